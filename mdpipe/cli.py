@@ -1,0 +1,149 @@
+"""The ``mdpipe`` command line: thin click commands that parse, call the library and write."""
+
+import json
+import sys
+from pathlib import Path
+
+import click
+
+from mdpipe import __version__
+from mdpipe.errors import MdpipeError
+from mdpipe.io import open_capture
+from mdpipe.io.radarlog import ATTRIBUTES
+from mdpipe.simulate.run import simulate_to_file
+from mdpipe.simulate.scene import load_scene_mapping, scene_from_mapping, scene_to_yaml
+
+PROGRESS_MIN_SAMPLES = 1 << 25
+
+
+class InputError(click.ClickException):
+    """Bad input named in one line; exit code 2."""
+
+    exit_code = 2
+
+
+class Group(click.Group):
+    """Turns :class:`MdpipeError` into a one-line message and exit code 2, with no traceback."""
+
+    def invoke(self, ctx):
+        try:
+            return super().invoke(ctx)
+        except MdpipeError as exc:
+            raise InputError(str(exc)) from None
+
+
+def attribute_overrides(func):
+    """Options that supply or replace a capture's chirp attributes (``--tp 64e-6`` ...)."""
+    for name, (_field, meaning, _example) in reversed(ATTRIBUTES.items()):
+        kind = int if name in ("N", "NrChn") else float
+        func = click.option(f"--{name.lower()}", name, type=kind, default=None,
+                            help=f"Use this {meaning} instead of the file's {name!r} attribute.")(func)
+    frame_counter = click.option(
+        "--frame-counter", type=click.Choice(["auto", "yes", "no"]), default="auto", show_default=True,
+        help="Whether sample 0 of every chirp is a frame counter to drop.")
+    return frame_counter(func)
+
+
+def open_with_overrides(path, kwargs):
+    overrides = {name: kwargs.pop(name) for name in ATTRIBUTES if kwargs.get(name) is not None}
+    for name in ATTRIBUTES:
+        kwargs.pop(name, None)
+    frame_counter = {"auto": "auto", "yes": True, "no": False}[kwargs.pop("frame_counter")]
+    return open_capture(path, frame_counter=frame_counter, overrides=overrides)
+
+
+@click.group(cls=Group)
+@click.version_option(__version__, prog_name="mdpipe")
+def main():
+    """Radar micro-Doppler analysis of drones and birds from Radarlog FMCW captures."""
+
+
+@main.command()
+@click.option("--config", "config_path", required=True, type=click.Path(dir_okay=False, path_type=Path),
+              help="Scene YAML (see configs/).")
+@click.option("-o", "--out", "out_path", type=click.Path(dir_okay=False, path_type=Path),
+              help="Output capture [default: <config name>.h5 here].")
+@click.option("--seed", type=int, help="Random seed (noise).")
+@click.option("--chirps", type=click.IntRange(min=1), help="Override radar.n_chirps.")
+@click.option("--channels", type=click.IntRange(1, 16), help="Override radar.n_channels.")
+@click.option("--snr-db", type=float, help="Override noise: per-sample SNR of the moving targets, dB.")
+def simulate(config_path, out_path, seed, chirps, channels, snr_db):
+    """Simulate the scene in CONFIG and write a Radarlog capture with its expected answer."""
+    data = load_scene_mapping(config_path)
+    if isinstance(data, dict) and isinstance(data.get("radar"), dict):
+        if chirps is not None:
+            data["radar"]["n_chirps"] = chirps
+        if channels is not None:
+            data["radar"]["n_channels"] = channels
+    if isinstance(data, dict):
+        if seed is not None:
+            data["seed"] = seed
+        if snr_db is not None:
+            data["noise"] = {"snr_db": snr_db}
+    scene = scene_from_mapping(data)
+    out_path = out_path or Path(config_path.stem + ".h5")
+    radar = scene.radar
+    total = radar.n_chirps * radar.n_samples * radar.n_channels
+    yaml_text = scene_to_yaml(data)
+    if total >= PROGRESS_MIN_SAMPLES:
+        with click.progressbar(length=radar.n_chirps, label=f"simulating {out_path.name}", file=sys.stderr) as bar:
+            truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text, progress=bar.update)
+    else:
+        truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text)
+    sim = truth["simulation"]
+    click.echo(f"wrote {out_path}: {radar.n_chirps} chirps x {radar.n_samples} samples x {radar.n_channels} RX, "
+               f"noise sigma {sim['noise_sigma_v']:.3g} V, {sim['clipped_samples']} samples clipped")
+
+
+def _format_truth(expected):
+    lines = []
+    for t in expected.get("targets", []):
+        head = f"  {t['name']} ({t['kind']}): range {t['range_m']['mean']:.2f} m (bin {t['range_bin']}), " \
+               f"range rate {t['range_rate_mps']['mean']:+.2f} m/s"
+        lines.append(head)
+        if t["kind"] == "multirotor":
+            lines.append(f"    {t['n_rotors']} rotors x {t['n_blades']} blades, r = {t['blade_length_m']} m, "
+                         f"beta = {t['elevation_deg']} deg, {t['rotation_rate_hz']:.2f} rev/s, "
+                         f"chopping {t['chopping_freq_hz']:.1f} Hz, flash period {t['flash_period_s'] * 1e3:.3f} ms")
+            lines.append(f"    Eq. 6 bandwidth {t['doppler_bw_hz']:.0f} Hz ({t['doppler_bw_mps']:.2f} m/s), "
+                         f"tip Doppler +-{t['tip_doppler_hz']:.0f} Hz, aliased: {t['aliased']}")
+        elif t["kind"] == "bird":
+            lines.append(f"    wingbeat {t['wingbeat_freq_hz']:.3g} Hz, micro-Doppler spread "
+                         f"{t['micro_doppler_spread_hz']:.1f} Hz, aliased: {t['aliased']}")
+        model = t["model"]
+        lines.append(f"    model: {model['nodes_per_chirp']} node(s) per chirp "
+                     f"({model['in_chirp_cycles']:.3g} cycles in a ramp), range migration "
+                     f"{'on' if model['range_migration'] else 'off'} ({model['travel_bins']:.3g} bins)")
+    return lines
+
+
+@main.command()
+@click.argument("capture", type=click.Path(dir_okay=False, path_type=Path))
+@attribute_overrides
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
+def info(capture, as_json, **kwargs):
+    """Print the layout, parameters and derived quantities of CAPTURE (and its truth, if simulated)."""
+    with open_with_overrides(capture, kwargs) as cap:
+        p, n = cap.params, cap.n_chirps
+        derived = {
+            "range_bin_m": p.range_bin_m, "max_range_m": p.max_range_m, "wavelength_m": p.wavelength_m,
+            "doppler_span_hz": p.doppler_span_hz, "velocity_span_mps": p.velocity_span_mps,
+            "duration_s": p.duration_s(n), "n_chirps": n, "n_channels": p.n_channels, "n_samples": p.n_samples,
+        }
+        if as_json:
+            click.echo(json.dumps({"file": str(capture), "layout": cap.layout.describe(), "params": p.__dict__,
+                                   "derived": derived, "truth": cap.truth and cap.truth["expected"]}))
+            return
+        click.echo(f"{capture}")
+        click.echo(f"  layout: {cap.layout.describe()}")
+        click.echo(f"  chirp: {p.f_start_hz / 1e9:.4f}-{p.f_stop_hz / 1e9:.4f} GHz "
+                   f"({p.bandwidth_hz / 1e6:.4g} MHz) in {p.ramp_up_s * 1e6:.4g} us, Tp {p.chirp_period_s * 1e6:.4g} us, "
+                   f"fs {p.sample_rate_hz / 1e6:.4g} MHz, N {p.n_samples}, FuSca {p.full_scale_v_per_lsb:.4g} V/LSB")
+        click.echo(f"  capture: {n} chirps x {p.n_channels} RX = {derived['duration_s']:.4g} s")
+        click.echo(f"  range bin {p.range_bin_m:.4g} m, max range {p.max_range_m:.5g} m")
+        click.echo(f"  Doppler span {p.doppler_span_hz:.6g} Hz (+-{p.doppler_span_hz / 2:.6g} Hz) = "
+                   f"{p.velocity_span_mps:.4g} m/s at lambda {p.wavelength_m * 1e3:.4g} mm")
+        if cap.truth:
+            click.echo("  truth (simulated):")
+            for line in _format_truth(cap.truth["expected"]):
+                click.echo(line)

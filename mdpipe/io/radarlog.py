@@ -1,0 +1,297 @@
+"""The Radarlog HDF5 layout (canonical, as written by ``mdpipe simulate``) and the variants read.
+
+Canonical: SI scalar root attributes ``fStrt fStop TRampUp TRampDo Tp fs N NrChn FuSca Creator``,
+int16 datasets ``/Chn1 ... /Chn{NrChn}`` of shape (n_chirps, N) chunked by rows, optional
+``/RxPosn`` (NrChn,) and, for simulated files, ``/Truth`` with attributes ``scene_yaml`` and
+``expected_json``.
+
+Variants read: ``Cfg_``-prefixed attribute names; one dataset ``/Data`` of shape
+(n_chirps, NrChn, N); a frame counter in sample 0 of every chirp (detected or forced; the column
+is dropped and N becomes N - 1); float32/float64 samples.
+
+Chunks read from a capture are float32 volts (samples times FuSca), shape (chirps, channels,
+samples).
+"""
+
+import json
+import os
+from dataclasses import dataclass, replace
+
+import h5py
+import numpy as np
+
+from mdpipe.errors import CaptureFormatError, ParameterError
+from mdpipe.params import RadarParams
+
+# attribute name -> (RadarParams field, meaning with unit, example CLI override)
+ATTRIBUTES = {
+    "fStrt": ("f_start_hz", "chirp start frequency, Hz", "--fstrt 76e9"),
+    "fStop": ("f_stop_hz", "chirp stop frequency, Hz", "--fstop 76.04e9"),
+    "TRampUp": ("ramp_up_s", "up-ramp duration, s", "--trampup 51.2e-6"),
+    "Tp": ("chirp_period_s", "chirp repetition interval, s", "--tp 64e-6"),
+    "fs": ("sample_rate_hz", "ADC sample rate, Hz", "--fs 40e6"),
+    "N": ("n_samples", "samples per chirp", "--n 2048"),
+    "NrChn": ("n_channels", "number of RX channels", "--nrchn 16"),
+}
+OPTIONAL_ATTRIBUTES = {"TRampDo": ("ramp_down_s", 0.0), "FuSca": ("full_scale_v_per_lsb", 1.0)}
+SAMPLE_DTYPES = (np.int16, np.float32, np.float64)
+DETECTION_CHIRPS = 256
+DEFAULT_CHUNK_CHIRPS = 256
+
+
+@dataclass(frozen=True)
+class Layout:
+    """What the reader found in a file."""
+
+    attribute_prefix: str
+    sample_datasets: str
+    sample_dtype: str
+    frame_counter: bool
+
+    def describe(self):
+        kind = "canonical" if (self.attribute_prefix, self.sample_datasets, self.sample_dtype,
+                               self.frame_counter) == ("", "per-channel", "int16", False) else "variant"
+        parts = [f"attributes {'Cfg_' if self.attribute_prefix else 'plain'}",
+                 "/Chn1../ChnK datasets" if self.sample_datasets == "per-channel" else "one 3-D /Data dataset",
+                 f"{self.sample_dtype} samples",
+                 "frame counter in sample 0 (dropped)" if self.frame_counter else "no frame counter"]
+        return f"{kind}: " + ", ".join(parts)
+
+
+def _scalar(value, name, path):
+    array = np.asarray(value)
+    if array.size != 1 or array.dtype.kind not in "iuf":
+        raise CaptureFormatError(f"{path}: attribute {name!r} must be one number, got {value!r}")
+    return array.reshape(()).item()
+
+
+def _read_attributes(attrs, path, overrides):
+    prefix = "Cfg_" if any(f"Cfg_{k}" in attrs for k in ATTRIBUTES) and not any(k in attrs for k in ATTRIBUTES) else ""
+    values = {}
+    for name, (field_name, meaning, example) in ATTRIBUTES.items():
+        if name in overrides:
+            values[field_name] = overrides[name]
+        elif prefix + name in attrs:
+            values[field_name] = _scalar(attrs[prefix + name], prefix + name, path)
+        else:
+            raise CaptureFormatError(
+                f"{path}: attribute {prefix + name!r} ({meaning}) is missing; supply it with {example}")
+    for name, (field_name, default) in OPTIONAL_ATTRIBUTES.items():
+        key = prefix + name
+        values[field_name] = _scalar(attrs[key], key, path) if key in attrs else default
+    return prefix, values
+
+
+def _sample_datasets(h5, path):
+    if "Data" in h5 and isinstance(h5["Data"], h5py.Dataset):
+        data = h5["Data"]
+        if data.ndim != 3:
+            raise CaptureFormatError(
+                f"{path}: dataset '/Data' has shape {data.shape}; expected (n_chirps, NrChn, N)")
+        return "3-D", [data]
+    names = sorted((k for k in h5 if k.startswith("Chn") and k[3:].isdigit()), key=lambda k: int(k[3:]))
+    if not names:
+        raise CaptureFormatError(
+            f"{path}: no sample datasets (expected /Chn1 ... /Chn{{NrChn}} or one /Data); is this a Radarlog capture?")
+    expected = [f"Chn{i + 1}" for i in range(len(names))]
+    if names != expected:
+        raise CaptureFormatError(f"{path}: channel datasets {names} are not numbered Chn1..Chn{len(names)}")
+    datasets = [h5[n] for n in names]
+    for name, ds in zip(names, datasets):
+        if ds.ndim != 2 or ds.shape != datasets[0].shape:
+            raise CaptureFormatError(
+                f"{path}: dataset '/{name}' has shape {ds.shape}; every /ChnK must be (n_chirps, N) "
+                f"like /Chn1 {datasets[0].shape}")
+    return "per-channel", datasets
+
+
+def _is_frame_counter(column):
+    """True when ``column`` is a strictly increasing integer sequence (int16 counters may wrap)."""
+    values = np.asarray(column, dtype=np.float64)
+    if len(values) < 3 or not np.all(values == np.round(values)):
+        return False
+    steps = np.diff(values)
+    if column.dtype == np.int16:
+        steps = np.mod(steps, 65536)
+        return bool(np.all((steps > 0) & (steps < 32768)))
+    return bool(np.all(steps > 0))
+
+
+class RadarlogReader:
+    """An open Radarlog capture; use :func:`open_capture`.
+
+    Attributes
+    ----------
+    params : RadarParams
+        Chirp parameters (N after dropping a frame counter).
+    n_chirps : int
+    layout : Layout
+    truth : dict or None
+        ``{"scene_yaml": str, "expected": dict}`` for simulated files.
+    """
+
+    def __init__(self, path, *, frame_counter="auto", overrides=None):
+        self.path = os.fspath(path)
+        try:
+            self._h5 = h5py.File(self.path, "r")
+        except FileNotFoundError:
+            raise CaptureFormatError(f"{self.path}: no such file") from None
+        except OSError as exc:
+            raise CaptureFormatError(
+                f"{self.path}: not a readable HDF5 file ({str(exc).split('(')[0].strip()}); "
+                "check that the file is complete and is a Radarlog capture") from None
+        try:
+            self._open(frame_counter, dict(overrides or {}))
+        except BaseException:
+            self._h5.close()
+            raise
+
+    def _open(self, frame_counter, overrides):
+        h5, path = self._h5, self.path
+        prefix, values = _read_attributes(h5.attrs, path, overrides)
+        kind, datasets = _sample_datasets(h5, path)
+        self._datasets = datasets
+        if kind == "3-D":
+            n_chirps, n_channels, row_length = datasets[0].shape
+        else:
+            (n_chirps, row_length), n_channels = datasets[0].shape, len(datasets)
+        self._n_channels = n_channels
+        dtype = datasets[0].dtype
+        if dtype not in SAMPLE_DTYPES:
+            raise CaptureFormatError(
+                f"{path}: samples are {dtype}; Radarlog samples must be int16 (or float32/float64)")
+        if values["n_samples"] != row_length:
+            raise CaptureFormatError(
+                f"{path}: attribute N={values['n_samples']} but chirps hold {row_length} samples; "
+                f"fix N or pass --n {row_length}")
+        if values["n_channels"] != n_channels:
+            raise CaptureFormatError(
+                f"{path}: attribute NrChn={values['n_channels']} but the file holds {n_channels} channels; "
+                f"fix NrChn or pass --nrchn {n_channels}")
+        if n_chirps < 1:
+            raise CaptureFormatError(f"{path}: the capture holds no chirps")
+        if frame_counter == "auto":
+            first = self._raw(0, min(n_chirps, DETECTION_CHIRPS))[:, 0, 0]
+            frame_counter = _is_frame_counter(first)
+        self._skip = 1 if frame_counter else 0
+        values["n_samples"] -= self._skip
+        positions = ()
+        if "RxPosn" in h5:
+            positions = tuple(np.asarray(h5["RxPosn"][()], dtype=np.float64).ravel())
+            if len(positions) != n_channels:
+                raise CaptureFormatError(
+                    f"{path}: /RxPosn lists {len(positions)} positions for {n_channels} channels")
+        try:
+            self.params = RadarParams(**values, rx_positions_m=positions)
+        except ParameterError as exc:
+            raise CaptureFormatError(f"{path}: {exc}") from None
+        self.n_chirps = int(n_chirps)
+        self.layout = Layout(prefix, kind, str(dtype), bool(frame_counter))
+        self.truth = None
+        if "Truth" in h5:
+            attrs = h5["Truth"].attrs
+            self.truth = {"scene_yaml": str(attrs.get("scene_yaml", "")),
+                          "expected": json.loads(attrs.get("expected_json", "{}"))}
+
+    def _raw(self, start, stop, channels=None):
+        channels = range(self._n_channels) if channels is None else channels
+        if self._datasets[0].ndim == 3:
+            return self._datasets[0][start:stop][:, list(channels), :]
+        return np.stack([self._datasets[c][start:stop] for c in channels], axis=1)
+
+    def read_chirps(self, start, stop, *, channels=None):
+        """Chirps ``start:stop`` as float32 volts, shape (chirps, channels, samples)."""
+        block = self._raw(start, stop, channels)[..., self._skip:]
+        if not np.all(np.isfinite(block)):
+            raise CaptureFormatError(
+                f"{self.path}: chirps {start}..{stop - 1} hold NaN or Inf samples; the capture is corrupt")
+        out = block.astype(np.float32)
+        out *= np.float32(self.params.full_scale_v_per_lsb)
+        return out
+
+    def iter_chunks(self, *, chunk_chirps=DEFAULT_CHUNK_CHIRPS, channels=None, start=0, stop=None):
+        """Yield ``(first_chirp, block)`` over the capture, ``block`` as in :meth:`read_chirps`."""
+        stop = self.n_chirps if stop is None else min(stop, self.n_chirps)
+        for first in range(start, stop, chunk_chirps):
+            yield first, self.read_chirps(first, min(first + chunk_chirps, stop), channels=channels)
+
+    def close(self):
+        self._h5.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def open_capture(path, *, frame_counter="auto", overrides=None):
+    """Open a Radarlog capture for reading.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    frame_counter : {"auto", True, False}
+        Whether sample 0 of each chirp is a frame counter; "auto" detects a strictly increasing
+        integer sequence in the first chirps.
+    overrides : mapping, optional
+        Attribute values (by canonical name, e.g. ``{"Tp": 64e-6}``) that replace or supply the file's.
+    """
+    return RadarlogReader(path, frame_counter=frame_counter, overrides=overrides)
+
+
+class CaptureWriter:
+    """Write a canonical Radarlog capture chunk by chunk; the file appears only when complete.
+
+    Use as a context manager; data goes to ``<path>.partial`` and is renamed on success.
+    """
+
+    def __init__(self, path, params, n_chirps, *, creator, truth=None, chunk_rows=64):
+        self.path = os.fspath(path)
+        self.params, self.n_chirps = params, int(n_chirps)
+        self._partial = self.path + ".partial"
+        self._h5 = h5py.File(self._partial, "w")
+        attrs = self._h5.attrs
+        attrs["fStrt"] = np.float64(params.f_start_hz)
+        attrs["fStop"] = np.float64(params.f_stop_hz)
+        attrs["TRampUp"] = np.float64(params.ramp_up_s)
+        attrs["TRampDo"] = np.float64(params.ramp_down_s)
+        attrs["Tp"] = np.float64(params.chirp_period_s)
+        attrs["fs"] = np.float64(params.sample_rate_hz)
+        attrs["N"] = np.int64(params.n_samples)
+        attrs["NrChn"] = np.int64(params.n_channels)
+        attrs["FuSca"] = np.float64(params.full_scale_v_per_lsb)
+        attrs["Creator"] = creator
+        rows = max(1, min(chunk_rows, self.n_chirps))
+        self.channels = [
+            self._h5.create_dataset(f"Chn{c + 1}", shape=(self.n_chirps, params.n_samples), dtype=np.int16,
+                                    chunks=(rows, params.n_samples))
+            for c in range(params.n_channels)]
+        if params.rx_positions_m:
+            self._h5.create_dataset("RxPosn", data=np.asarray(params.rx_positions_m, dtype=np.float64))
+        if truth is not None:
+            self.write_truth(**truth)
+
+    def write_chirps(self, first_chirp, block):
+        """Store ``block`` (channels, chirps, samples) of int16 at ``first_chirp``."""
+        for dataset, rows in zip(self.channels, block):
+            dataset[first_chirp:first_chirp + rows.shape[0]] = rows
+
+    def write_truth(self, *, scene_yaml, expected):
+        group = self._h5.require_group("Truth")
+        group.attrs["scene_yaml"] = scene_yaml
+        group.attrs["expected_json"] = json.dumps(expected, indent=1)
+
+    def set_full_scale(self, full_scale_v_per_lsb):
+        self.params = replace(self.params, full_scale_v_per_lsb=full_scale_v_per_lsb)
+        self._h5.attrs["FuSca"] = np.float64(full_scale_v_per_lsb)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, exc_type, exc, tb):
+        self._h5.close()
+        if exc_type is None:
+            os.replace(self._partial, self.path)
+        else:
+            os.remove(self._partial)

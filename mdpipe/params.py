@@ -1,0 +1,151 @@
+"""Parameter sets, one frozen dataclass each, validated on construction.
+
+All quantities are SI; names carry their unit.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mdpipe.errors import ParameterError
+from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS, range_rate_from_doppler_mps
+
+
+def require_positive(**values):
+    """Raise :class:`ParameterError` naming the first value that is not a finite number > 0."""
+    for name, value in values.items():
+        if not (np.isfinite(value) and value > 0):
+            raise ParameterError(f"{name}={value!r} must be a finite number > 0")
+
+
+@dataclass(frozen=True)
+class RadarParams:
+    """FMCW chirp parameters of a capture (the Radarlog attributes, in SI units).
+
+    Parameters
+    ----------
+    f_start_hz, f_stop_hz : float
+        Chirp start and stop frequencies (``fStrt``, ``fStop``).
+    ramp_up_s : float
+        Duration of the sampled up-ramp (``TRampUp``).
+    chirp_period_s : float
+        Chirp repetition interval, the slow-time sample period (``Tp``).
+    sample_rate_hz : float
+        ADC sample rate (``fs``).
+    n_samples : int
+        Samples per chirp (``N``).
+    n_channels : int
+        RX channels (``NrChn``).
+    ramp_down_s : float
+        Down-ramp duration (``TRampDo``); informational.
+    full_scale_v_per_lsb : float
+        Volts per ADC count (``FuSca``).
+    rx_positions_m : tuple of float
+        RX positions along the array axis, one per channel; empty when unknown.
+    """
+
+    f_start_hz: float
+    f_stop_hz: float
+    ramp_up_s: float
+    chirp_period_s: float
+    sample_rate_hz: float
+    n_samples: int
+    n_channels: int = 1
+    ramp_down_s: float = 0.0
+    full_scale_v_per_lsb: float = 1.0
+    rx_positions_m: tuple = field(default=())
+
+    def __post_init__(self):
+        require_positive(
+            f_start_hz=self.f_start_hz,
+            ramp_up_s=self.ramp_up_s,
+            chirp_period_s=self.chirp_period_s,
+            sample_rate_hz=self.sample_rate_hz,
+            full_scale_v_per_lsb=self.full_scale_v_per_lsb,
+        )
+        if not self.f_stop_hz > self.f_start_hz:
+            raise ParameterError(
+                f"f_stop_hz={self.f_stop_hz!r} must exceed f_start_hz={self.f_start_hz!r} (an up-chirp)"
+            )
+        if int(self.n_samples) != self.n_samples or self.n_samples < 2:
+            raise ParameterError(f"n_samples={self.n_samples!r} must be an integer >= 2")
+        if int(self.n_channels) != self.n_channels or self.n_channels < 1:
+            raise ParameterError(f"n_channels={self.n_channels!r} must be an integer >= 1")
+        if self.ramp_down_s < 0:
+            raise ParameterError(f"ramp_down_s={self.ramp_down_s!r} must be >= 0")
+        if self.n_samples / self.sample_rate_hz > self.ramp_up_s * (1 + 1e-9):
+            raise ParameterError(
+                f"n_samples / sample_rate_hz = {self.n_samples / self.sample_rate_hz:.6g} s exceeds "
+                f"ramp_up_s={self.ramp_up_s!r}: the samples must fit in the up-ramp"
+            )
+        if self.ramp_up_s > self.chirp_period_s * (1 + 1e-9):
+            raise ParameterError(
+                f"ramp_up_s={self.ramp_up_s!r} exceeds chirp_period_s={self.chirp_period_s!r}"
+            )
+        positions = tuple(float(p) for p in self.rx_positions_m)
+        if positions and len(positions) != self.n_channels:
+            raise ParameterError(
+                f"rx_positions_m has {len(positions)} entries for n_channels={self.n_channels}"
+            )
+        object.__setattr__(self, "rx_positions_m", positions)
+        object.__setattr__(self, "n_samples", int(self.n_samples))
+        object.__setattr__(self, "n_channels", int(self.n_channels))
+
+    @property
+    def bandwidth_hz(self):
+        """Swept bandwidth ``fStop - fStrt``."""
+        return self.f_stop_hz - self.f_start_hz
+
+    @property
+    def slope_hz_per_s(self):
+        """Sweep slope ``S = (fStop - fStrt) / TRampUp``."""
+        return self.bandwidth_hz / self.ramp_up_s
+
+    @property
+    def centre_hz(self):
+        """Carrier used for Doppler, the centre of the sweep."""
+        return 0.5 * (self.f_start_hz + self.f_stop_hz)
+
+    @property
+    def wavelength_m(self):
+        """Wavelength at the centre frequency."""
+        return SPEED_OF_LIGHT_MPS / self.centre_hz
+
+    @property
+    def range_bin_m(self):
+        """Spacing of the N-point range-FFT bins, ``fs c / (2 S N)``."""
+        return self.sample_rate_hz * SPEED_OF_LIGHT_MPS / (2.0 * self.slope_hz_per_s * self.n_samples)
+
+    @property
+    def max_range_m(self):
+        """Range of the last positive-frequency bin of a real IF (``N/2`` bins)."""
+        return self.range_bin_m * (self.n_samples // 2)
+
+    @property
+    def prf_hz(self):
+        """Chirp repetition frequency ``1 / Tp``, the slow-time sample rate."""
+        return 1.0 / self.chirp_period_s
+
+    @property
+    def doppler_span_hz(self):
+        """Unambiguous Doppler span ``1 / Tp`` (from ``-1/(2 Tp)`` to ``+1/(2 Tp)``)."""
+        return self.prf_hz
+
+    @property
+    def velocity_span_mps(self):
+        """Unambiguous range-rate span, ``lambda / (2 Tp)``."""
+        return float(-range_rate_from_doppler_mps(self.doppler_span_hz, wavelength_m=self.wavelength_m))
+
+    @property
+    def sample_times_s(self):
+        """Fast-time instants of the samples within a ramp, shape (n_samples,)."""
+        return np.arange(self.n_samples) / self.sample_rate_hz
+
+    @property
+    def sampled_duration_s(self):
+        """Time spanned by one chirp's samples, ``N / fs``."""
+        return self.n_samples / self.sample_rate_hz
+
+    def duration_s(self, n_chirps):
+        """Capture duration for ``n_chirps`` chirps."""
+        return n_chirps * self.chirp_period_s

@@ -1,0 +1,76 @@
+"""Flapping bird: the two-segment wing of the paper's Eqs. 7-15 (after Chen).
+
+Body frame: x along the flight direction, y along the right wing's span, z up. The upper arm
+(shoulder to elbow, length L1) swings in the y-z plane at ``psi1`` from the y axis; the forearm
+(elbow to tip, length L2) is lifted by ``psi1 - psi2`` in that plane and swept back by the twist
+``phi2``.
+
+The paper writes the joints with ``tan`` (Eqs. 12, 13, 15), which diverges when a wing segment is
+vertical. Here they are built by rotations of rigid segments:
+
+``P1 = L1 (0, cos psi1, sin psi1)``,
+``P2 = P1 + L2 (-sin phi2, cos phi2 cos(psi1 - psi2), cos phi2 sin(psi1 - psi2))``.
+
+This equals Eqs. 10-12, 14 and 15 wherever their tangents are finite. Eq. 13's
+``x2 = -(y2 - y1) tan(phi2 / cos(psi1 - psi2))`` does not keep the forearm length fixed once
+``psi1 != psi2``; the rigid forearm agrees with it exactly when ``psi1 = psi2`` and to third order
+in ``phi2`` otherwise.
+"""
+
+import numpy as np
+
+
+def flap_angles_rad(t_s, *, wingbeat_hz, a1_deg, a2_deg, psi10_deg, psi20_deg, c2_deg, phi20_deg):
+    """Harmonic wing angles of Eqs. 7-9, with A2 as its own amplitude (Eq. 8 reuses A1).
+
+    Returns
+    -------
+    psi1, psi2, phi2 : ndarray, rad, shape of ``t_s``
+    """
+    beat = np.cos(2.0 * np.pi * wingbeat_hz * np.asarray(t_s, dtype=np.float64))
+    psi1 = np.deg2rad(a1_deg * beat + psi10_deg)
+    psi2 = np.deg2rad(a2_deg * beat + psi20_deg)
+    phi2 = np.deg2rad(c2_deg * beat + phi20_deg)
+    return psi1, psi2, phi2
+
+
+def wing_joints_m(psi1_rad, psi2_rad, phi2_rad, *, upper_arm_m, forearm_m):
+    """Elbow P1 and tip P2 of the right wing in the body frame, built from rotations.
+
+    Returns
+    -------
+    p1, p2 : ndarray, shape (..., 3), m
+    """
+    psi1 = np.asarray(psi1_rad, dtype=np.float64)
+    lift = psi1 - np.asarray(psi2_rad, dtype=np.float64)
+    phi2 = np.asarray(phi2_rad, dtype=np.float64)
+    p1 = upper_arm_m * np.stack([np.zeros_like(psi1), np.cos(psi1), np.sin(psi1)], axis=-1)
+    forearm = np.stack([-np.sin(phi2), np.cos(phi2) * np.cos(lift), np.cos(phi2) * np.sin(lift)], axis=-1)
+    return p1, p1 + forearm_m * forearm
+
+
+def wing_points_m(p1_m, p2_m, *, points_per_segment):
+    """Scattering points along both segments of both wings, body frame.
+
+    Each segment (shoulder-elbow, elbow-tip) carries ``points_per_segment`` points at the mid-points
+    of equal pieces; the left wing mirrors the right one in y.
+
+    Returns
+    -------
+    ndarray, shape (..., 4 * points_per_segment, 3), m
+    """
+    frac = (np.arange(points_per_segment) + 0.5) / points_per_segment
+    upper = frac[:, None] * p1_m[..., None, :]
+    fore = p1_m[..., None, :] + frac[:, None] * (p2_m - p1_m)[..., None, :]
+    right = np.concatenate([upper, fore], axis=-2)
+    left = right * np.array([1.0, -1.0, 1.0])
+    return np.concatenate([right, left], axis=-2)
+
+
+def body_to_radar_rotation(heading_rad):
+    """Rotation matrix (3, 3) from the bird's body frame to the radar frame for a level flight heading.
+
+    ``heading_rad`` is the flight direction's angle from the radar x axis towards +y.
+    """
+    c, s = np.cos(heading_rad), np.sin(heading_rad)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
