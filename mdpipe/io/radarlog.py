@@ -137,6 +137,9 @@ class RadarlogReader:
         except FileNotFoundError:
             raise CaptureFormatError(f"{self.path}: no such file") from None
         except OSError as exc:
+            if "truncated" in str(exc):
+                raise CaptureFormatError(
+                    f"{self.path}: the HDF5 file is truncated; the recording or copy did not finish") from None
             raise CaptureFormatError(
                 f"{self.path}: not a readable HDF5 file ({str(exc).split('(')[0].strip()}); "
                 "check that the file is complete and is a Radarlog capture") from None
@@ -195,9 +198,14 @@ class RadarlogReader:
 
     def _raw(self, start, stop, channels=None):
         channels = range(self._n_channels) if channels is None else channels
-        if self._datasets[0].ndim == 3:
-            return self._datasets[0][start:stop][:, list(channels), :]
-        return np.stack([self._datasets[c][start:stop] for c in channels], axis=1)
+        try:
+            if self._datasets[0].ndim == 3:
+                return self._datasets[0][start:stop][:, list(channels), :]
+            return np.stack([self._datasets[c][start:stop] for c in channels], axis=1)
+        except OSError as exc:
+            raise CaptureFormatError(
+                f"{self.path}: chirps {start}..{stop - 1} cannot be read ({str(exc).split('(')[0].strip()}); "
+                "the file is corrupt") from None
 
     def read_chirps(self, start, stop, *, channels=None):
         """Chirps ``start:stop`` as float32 volts, shape (chirps, channels, samples)."""

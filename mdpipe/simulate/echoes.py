@@ -76,6 +76,13 @@ def bird_echo(target, t_s, *, f0_hz):
     return Echo(signal, ranges[..., 0], kinematics.line_of_sight(points[..., 0, :]))
 
 
+def point_echo(target, t_s, *, f0_hz):
+    """A moving point scatterer."""
+    position, body_range = _body(target.motion, t_s)
+    signal = np.sqrt(target.rcs_m2) / body_range**2 * _carrier(body_range, f0_hz)
+    return Echo(signal, body_range, kinematics.line_of_sight(position))
+
+
 def static_echo(target, t_s, *, f0_hz):
     """A fixed point: constant echo."""
     shape = np.shape(t_s)
@@ -85,7 +92,7 @@ def static_echo(target, t_s, *, f0_hz):
                 np.broadcast_to(position / target.range_m, shape + (3,)))
 
 
-ECHO_MODELS = {"multirotor": multirotor_echo, "bird": bird_echo, "static": static_echo}
+ECHO_MODELS = {"multirotor": multirotor_echo, "bird": bird_echo, "point": point_echo, "static": static_echo}
 
 
 def target_echo(target, t_s, *, f0_hz):
@@ -136,6 +143,6 @@ def peak_amplitude_v(target, min_range_m):
     elif target.kind == "bird":
         total = np.sqrt(target.body_rcs_m2) + 2 * np.sqrt(target.wing_rcs_m2)
         reach_m = target.upper_arm_m + target.forearm_m
-    else:
+    else:  # point, static
         total, reach_m = np.sqrt(target.rcs_m2), 0.0
     return float(total / max(min_range_m - reach_m, 0.5 * min_range_m) ** 2)

@@ -176,14 +176,24 @@ class Static:
         return self.range_m * np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
 
 
-TARGET_KINDS = {cls.kind: cls for cls in (Multirotor, Bird, Static)}
+@dataclass(frozen=True)
+class Point:
+    """A moving point scatterer (a body without micro-motion)."""
+
+    motion: Motion
+    name: str = "point"
+    rcs_m2: float = field(default=1.0, metadata=POSITIVE)
+    kind = "point"
+
+
+TARGET_KINDS = {cls.kind: cls for cls in (Multirotor, Bird, Point, Static)}
 
 
 @dataclass(frozen=True)
 class Noise:
     """Receiver noise: white Gaussian, independent per sample, chirp and channel.
 
-    ``snr_db`` is the mean IF power of the moving targets (drones and birds, not static clutter)
+    ``snr_db`` is the mean IF power of the moving targets (drones, birds, points; not static clutter)
     over the noise power, per sample and channel, before any processing gain; ``sigma_v`` sets
     the noise standard deviation directly. Neither: no noise.
     """
