@@ -2,6 +2,7 @@
 
 import dataclasses
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -9,6 +10,7 @@ import numpy as np
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import CaptureWriter
+from mdpipe.simulate.noise import noise_streams, standard_normal_f32
 from mdpipe.simulate.echoes import body_track, peak_amplitude_v, target_echo
 from mdpipe.physics import kinematics
 from mdpipe.simulate.synth import CHUNK_CHIRPS, noise_free_if, plan_targets
@@ -49,18 +51,21 @@ def noise_sigma_v(scene, plans):
     return float(np.sqrt(power / 10 ** (noise.snr_db / 10)))
 
 
-def quantise(block_v, *, sigma_v, lsb_v, rng):
-    """Add noise to one channel's block (chirps, samples) in place and convert to int16.
+def quantise(block_lsb, *, sigma_lsb, rng, scratch, out):
+    """Add noise to one channel's block (chirps, samples), already in LSB units, and round into ``out``.
 
-    Returns the int16 block and the number of samples clipped.
+    ``scratch`` is a float32 buffer of the block's size for the noise, ``out`` the int16 result.
+    Returns the number of samples clipped.
     """
-    if sigma_v > 0:
-        block_v += np.float32(sigma_v) * rng.standard_normal(block_v.shape, dtype=np.float32)
-    block_v *= np.float32(1.0 / lsb_v)
-    np.rint(block_v, out=block_v)
-    clipped = int(np.count_nonzero(block_v > INT16_MAX) + np.count_nonzero(block_v < -INT16_MAX - 1))
-    np.clip(block_v, -INT16_MAX - 1, INT16_MAX, out=block_v)
-    return block_v.astype(np.int16), clipped
+    if sigma_lsb > 0:
+        block_lsb += standard_normal_f32(rng, scratch, scale=sigma_lsb)
+    np.rint(block_lsb, out=block_lsb)
+    clipped = 0
+    if block_lsb.min() < -INT16_MAX - 1 or block_lsb.max() > INT16_MAX:
+        clipped = int(np.count_nonzero(block_lsb > INT16_MAX) + np.count_nonzero(block_lsb < -INT16_MAX - 1))
+        np.clip(block_lsb, -INT16_MAX - 1, INT16_MAX, out=block_lsb)
+    np.copyto(out, block_lsb, casting="unsafe")
+    return clipped
 
 
 def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps=CHUNK_CHIRPS):
@@ -83,20 +88,38 @@ def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps
     else:
         peak_v = peak_signal_v(plans, radar, n_chirps) + NOISE_PEAK_SIGMAS * sigma_v
         lsb_v = peak_v / INT16_MAX if peak_v > 0 else 1.0
-    streams = [np.random.Generator(np.random.PCG64(s)) for s in np.random.SeedSequence(scene.seed).spawn(radar.n_channels)]
+    streams = noise_streams(scene.seed, radar.n_channels)
     clipped = 0
     writer_params = dataclasses.replace(radar, full_scale_v_per_lsb=lsb_v)
+    scratch = threading.local()
+
+    # two int16 buffers: one being written to the file while the next chunk is made in the other
+    int16_buffers = np.empty((2, radar.n_channels, min(chunk_chirps, n_chirps), radar.n_samples), dtype=np.int16)
+
+    def finish_channel(block, out, channel):
+        if getattr(scratch, "noise", None) is None or scratch.noise.shape != block[channel].shape:
+            scratch.noise = np.empty(block[channel].shape, dtype=np.float32)
+        return quantise(block[channel], sigma_lsb=sigma_v / lsb_v, rng=streams[channel], scratch=scratch.noise,
+                        out=out[channel])
+
+    # Synthesis of chunk i + 1 (matrix product, then noise and quantisation on both cores) overlaps the
+    # write of chunk i in a writer thread; at most two chunks are in memory.
     with CaptureWriter(out_path, writer_params, n_chirps, creator=f"mdpipe {__version__} simulate") as writer, \
-            ThreadPoolExecutor(max_workers=min(radar.n_channels, os.cpu_count() or 1)) as pool:
-        for first in range(0, n_chirps, chunk_chirps):
+            ThreadPoolExecutor(max_workers=min(radar.n_channels, os.cpu_count() or 1)) as pool, \
+            ThreadPoolExecutor(max_workers=1) as io:
+        pending = None
+        for index, first in enumerate(range(0, n_chirps, chunk_chirps)):
             rows = min(chunk_chirps, n_chirps - first)
-            block = noise_free_if(plans, first, rows, radar=radar)
-            results = list(pool.map(lambda c: quantise(block[c], sigma_v=sigma_v, lsb_v=lsb_v, rng=streams[c]),
-                                    range(radar.n_channels)))
-            writer.write_chirps(first, [r[0] for r in results])
-            clipped += sum(r[1] for r in results)
+            block = noise_free_if(plans, first, rows, radar=radar, scale=1.0 / lsb_v)
+            out = int16_buffers[index % 2, :, :rows]
+            clipped += sum(pool.map(lambda c: finish_channel(block, out, c), range(radar.n_channels)))
+            if pending is not None:
+                pending.result()  # chunk i - 1 is in the file; its buffer is free for chunk i + 1
+            pending = io.submit(writer.write_chirps, first, out)
             if progress is not None:
                 progress(rows)
+        if pending is not None:
+            pending.result()
         truth = expected_features(scene, plans)
         truth["simulation"] = {
             "mdpipe_version": __version__, "seed": scene.seed, "noise_sigma_v": sigma_v,

@@ -70,8 +70,8 @@ def plan_targets(scene, *, chunk_chirps=CHUNK_CHIRPS):
     return plans
 
 
-def noise_free_if(plans, first_chirp, n_chirps, *, radar, channels=None):
-    """Noise-free IF of chirps ``first_chirp ... first_chirp + n_chirps - 1`` in volts.
+def noise_free_if(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0):
+    """Noise-free IF of chirps ``first_chirp ... first_chirp + n_chirps - 1``, in volts times ``scale``.
 
     Returns
     -------
@@ -101,5 +101,5 @@ def noise_free_if(plans, first_chirp, n_chirps, *, radar, channels=None):
     g_all = np.concatenate(g_blocks, axis=-1)
     b_all = np.concatenate(b_blocks, axis=0)
     lhs = np.concatenate([g_all.real, -g_all.imag], axis=-1).astype(np.float32)
-    rhs = np.concatenate([b_all.real, b_all.imag], axis=0).astype(np.float32)
+    rhs = (scale * np.concatenate([b_all.real, b_all.imag], axis=0)).astype(np.float32)
     return lhs @ rhs
