@@ -44,11 +44,10 @@ def attribute_overrides(func):
     return frame_counter(func)
 
 
-def open_with_overrides(path, kwargs):
-    overrides = {name: kwargs.pop(name) for name in ATTRIBUTES if kwargs.get(name) is not None}
-    for name in ATTRIBUTES:
-        kwargs.pop(name, None)
-    frame_counter = {"auto": "auto", "yes": True, "no": False}[kwargs.pop("frame_counter")]
+def open_with_overrides(path, options):
+    """Open ``path`` with the values of the :func:`attribute_overrides` options in ``options``."""
+    overrides = {name: options[name] for name in ATTRIBUTES if options[name] is not None}
+    frame_counter = {"auto": "auto", "yes": True, "no": False}[options["frame_counter"]]
     return open_capture(path, frame_counter=frame_counter, overrides=overrides)
 
 
@@ -121,9 +120,9 @@ def _format_truth(expected):
 @click.argument("capture", type=click.Path(dir_okay=False, path_type=Path))
 @attribute_overrides
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
-def info(capture, as_json, **kwargs):
+def info(capture, as_json, **options):
     """Print the layout, parameters and derived quantities of CAPTURE (and its truth, if simulated)."""
-    with open_with_overrides(capture, kwargs) as cap:
+    with open_with_overrides(capture, options) as cap:
         p, n = cap.params, cap.n_chirps
         derived = {
             "range_bin_m": p.range_bin_m, "max_range_m": p.max_range_m, "wavelength_m": p.wavelength_m,

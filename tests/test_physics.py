@@ -71,13 +71,12 @@ def test_closed_form_blade_flashes_at_predicted_times(n_blades):
                                   % (1 / rate), 12))
     assert len(expected) == rotor.flashes_per_revolution(n_blades)
     np.testing.assert_allclose(np.sort(t[local_max]), expected, atol=2 * (t[1] - t[0]))
-    # at a flash the broadside blade(s) add their full span; the others add at most a sinc sidelobe each
+    # at a flash the broadside blade(s) add their full span; blade k at |cos(theta)| = |sin(2 pi k / N)| adds at
+    # most the sinc's envelope, span / (pi 2 span |cos| / lambda) = lambda / (2 pi |cos|)
     broadside = 2 if n_blades % 2 == 0 else 1
-    others = n_blades - broadside
-    min_cos = np.min(np.abs(np.cos(np.pi / 2 + 2 * np.pi * np.arange(1, n_blades) / n_blades))[
-        np.abs(np.cos(np.pi / 2 + 2 * np.pi * np.arange(1, n_blades) / n_blades)) > 1e-9], initial=1.0)
-    sidelobe = length / (np.pi * 2 * length * min_cos / lam)
-    assert abs(mag.max() - broadside * length) <= others * sidelobe + 1e-12
+    cos_others = np.abs(np.sin(2 * np.pi * np.arange(1, n_blades) / n_blades))
+    sidelobes = np.sum(lam / (2 * np.pi * cos_others[cos_others > 1e-9]))
+    assert abs(mag.max() - broadside * length) <= sidelobes + 1e-12
 
 
 def test_point_blades_converge_to_closed_form():

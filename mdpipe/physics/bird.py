@@ -1,6 +1,6 @@
 """Flapping bird: the two-segment wing of the paper's Eqs. 7-15 (after Chen).
 
-Body frame: x along the flight direction, y along the right wing's span, z up. The upper arm
+Body frame: x along the flight direction, y along one wing's span (the other wing mirrors it), z up. The upper arm
 (shoulder to elbow, length L1) swings in the y-z plane at ``psi1`` from the y axis; the forearm
 (elbow to tip, length L2) is lifted by ``psi1 - psi2`` in that plane and swept back by the twist
 ``phi2``.
@@ -35,7 +35,7 @@ def flap_angles_rad(t_s, *, wingbeat_hz, a1_deg, a2_deg, psi10_deg, psi20_deg, c
 
 
 def wing_joints_m(psi1_rad, psi2_rad, phi2_rad, *, upper_arm_m, forearm_m):
-    """Elbow P1 and tip P2 of the right wing in the body frame, built from rotations.
+    """Elbow P1 and tip P2 of the +y wing in the body frame, built from rotations.
 
     Returns
     -------
@@ -53,7 +53,7 @@ def wing_points_m(p1_m, p2_m, *, points_per_segment):
     """Scattering points along both segments of both wings, body frame.
 
     Each segment (shoulder-elbow, elbow-tip) carries ``points_per_segment`` points at the mid-points
-    of equal pieces; the left wing mirrors the right one in y.
+    of equal pieces; the second wing mirrors the first in y.
 
     Returns
     -------
@@ -62,9 +62,8 @@ def wing_points_m(p1_m, p2_m, *, points_per_segment):
     frac = (np.arange(points_per_segment) + 0.5) / points_per_segment
     upper = frac[:, None] * p1_m[..., None, :]
     fore = p1_m[..., None, :] + frac[:, None] * (p2_m - p1_m)[..., None, :]
-    right = np.concatenate([upper, fore], axis=-2)
-    left = right * np.array([1.0, -1.0, 1.0])
-    return np.concatenate([right, left], axis=-2)
+    wing = np.concatenate([upper, fore], axis=-2)
+    return np.concatenate([wing, wing * np.array([1.0, -1.0, 1.0])], axis=-2)
 
 
 def body_to_radar_rotation(heading_rad):

@@ -1,4 +1,4 @@
-"""Simulate a scene into a Radarlog file, chunk by chunk (memory bounded by one chunk of chirps)."""
+"""Simulate a scene into a Radarlog file, chunk by chunk (memory bounded by two chunks of chirps)."""
 
 import dataclasses
 import os
@@ -10,9 +10,9 @@ import numpy as np
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import CaptureWriter
-from mdpipe.simulate.noise import noise_streams, standard_normal_f32
-from mdpipe.simulate.echoes import body_track, peak_amplitude_v, target_echo
 from mdpipe.physics import kinematics
+from mdpipe.simulate.echoes import body_track, peak_amplitude_v, target_echo
+from mdpipe.simulate.noise import noise_streams, standard_normal_f32
 from mdpipe.simulate.synth import CHUNK_CHIRPS, noise_free_if, plan_targets
 from mdpipe.simulate.truth import expected_features
 

@@ -19,9 +19,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import BarycentricInterpolator
 
+from mdpipe.physics import kinematics
 from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS, beat_frequency_hz
 from mdpipe.simulate.echoes import body_track, target_echo
-from mdpipe.physics import kinematics
 from mdpipe.simulate.fidelity import choose_model
 
 CHUNK_CHIRPS = 512
