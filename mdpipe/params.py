@@ -4,6 +4,7 @@ All quantities are SI; names carry their unit.
 """
 
 from dataclasses import dataclass, field
+from typing import Optional
 
 import numpy as np
 
@@ -149,3 +150,70 @@ class RadarParams:
     def duration_s(self, n_chirps):
         """Capture duration for ``n_chirps`` chirps."""
         return n_chirps * self.chirp_period_s
+
+
+@dataclass(frozen=True)
+class ProcessParams:
+    """Choices of ``mdpipe process``; the defaults are what a Radarlog user would start with.
+
+    Parameters
+    ----------
+    min_range_m, max_range_m : float
+        Gate in which targets are searched.
+    range_m : float or None
+        Analyse this range (manual bin choice) instead of detecting.
+    max_targets : int
+        Most targets reported per capture.
+    detection_db : float
+        A bin is a target when its moving power exceeds the gate's noise level by this much.
+    elevation_deg : float
+        Elevation beta of the rotor plane (Eq. 6), for the blade-length inversion.
+    n_blades : int
+        Blades per rotor (N), for rotation rate = chopping frequency / N.
+    threshold_db : float
+        The paper's bandwidth rule: spectrum above its mean by this many dB.
+    range_window, zero_pad : str, int
+        Range-FFT window (``hann``, ``hamming``, ``blackman``, ``boxcar``) and zero-padding factor.
+    stft_window_s, stft_hop_s : float or None
+        Spectrogram window and hop; None chooses them from the physics of the target.
+    chunk_chirps : int
+        Chirps read per chunk.
+    """
+
+    min_range_m: float = 1.0
+    max_range_m: float = 200.0
+    range_m: Optional[float] = None
+    max_targets: int = 4
+    detection_db: float = 12.0
+    elevation_deg: float = 0.0
+    n_blades: int = 2
+    threshold_db: float = 20.0
+    range_window: str = "hann"
+    zero_pad: int = 1
+    stft_window_s: Optional[float] = None
+    stft_hop_s: Optional[float] = None
+    chunk_chirps: int = 256
+
+    def __post_init__(self):
+        require_positive(max_range_m=self.max_range_m, chunk_chirps=self.chunk_chirps)
+        if not 0 <= self.min_range_m < self.max_range_m:
+            raise ParameterError(f"min_range_m={self.min_range_m!r} must lie in [0, max_range_m={self.max_range_m!r})")
+        if self.range_m is not None:
+            require_positive(range_m=self.range_m)
+        if not -90 <= self.elevation_deg <= 90:
+            raise ParameterError(f"elevation_deg={self.elevation_deg!r} must lie in [-90, 90]")
+        if int(self.n_blades) != self.n_blades or self.n_blades < 1:
+            raise ParameterError(f"n_blades={self.n_blades!r} must be an integer >= 1")
+        if int(self.max_targets) != self.max_targets or self.max_targets < 1:
+            raise ParameterError(f"max_targets={self.max_targets!r} must be an integer >= 1")
+        if self.range_window not in RANGE_WINDOWS:
+            raise ParameterError(f"range_window={self.range_window!r} must be one of {', '.join(RANGE_WINDOWS)}")
+        if int(self.zero_pad) != self.zero_pad or not 1 <= self.zero_pad <= 16:
+            raise ParameterError(f"zero_pad={self.zero_pad!r} must be an integer from 1 to 16")
+        for name in ("stft_window_s", "stft_hop_s"):
+            value = getattr(self, name)
+            if value is not None:
+                require_positive(**{name: value})
+
+
+RANGE_WINDOWS = ("hann", "hamming", "blackman", "boxcar")

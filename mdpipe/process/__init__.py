@@ -1,0 +1,1 @@
+"""From a Radarlog capture to features: ranging, selection, Doppler analysis, features, classification."""

@@ -1,0 +1,89 @@
+"""Slow-time Doppler analysis: spectrogram, dwell power spectrum, body-Doppler track.
+
+Frequencies follow the paper's sign (approaching positive) and are centred (``-PRF/2 .. PRF/2``).
+Arrays are (frequency, time) for spectrograms, as ``scipy.signal.ShortTimeFFT`` returns them.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.ndimage import median_filter
+from scipy.signal import ShortTimeFFT
+from scipy.signal.windows import hann
+
+
+@dataclass(frozen=True)
+class Spectrogram:
+    """Power (f, t) in V^2 per bin, with its axes ``f_hz`` (centred) and ``t_s`` (frame centres)."""
+
+    power: np.ndarray
+    t_s: np.ndarray
+    f_hz: np.ndarray
+    window_s: float
+    hop_s: float
+
+
+@dataclass(frozen=True)
+class PowerSpectrum:
+    """Dwell power spectrum (Hann-windowed periodogram), ``power`` per bin at centred ``f_hz``."""
+
+    power: np.ndarray
+    f_hz: np.ndarray
+
+    @property
+    def resolution_hz(self):
+        return float(self.f_hz[1] - self.f_hz[0])
+
+
+def spectrogram(signal, *, prf_hz, window_s, hop_s):
+    """Short-time power spectrum of a complex slow-time ``signal`` (Hann window).
+
+    ``window_s`` and ``hop_s`` are rounded to whole chirps (at least 8 and 1).
+    """
+    n_window = max(8, int(round(window_s * prf_hz)))
+    n_window = min(n_window, len(signal))
+    hop = max(1, int(round(hop_s * prf_hz)))
+    stft = ShortTimeFFT(hann(n_window, sym=False), hop=hop, fs=prf_hz, fft_mode="centered",
+                        scale_to="magnitude")
+    first, last = stft.lower_border_end[1], stft.upper_border_begin(len(signal))[1]
+    power = np.abs(stft.stft(signal, p0=first, p1=max(last, first + 1))) ** 2
+    return Spectrogram(power=power, t_s=stft.t(len(signal), p0=first, p1=max(last, first + 1)), f_hz=stft.f,
+                       window_s=n_window / prf_hz, hop_s=hop / prf_hz)
+
+
+def power_spectrum(signal, *, prf_hz):
+    """Hann-windowed periodogram of the whole dwell, normalised so a tone of amplitude a has power a^2."""
+    n = len(signal)
+    window = hann(n, sym=False)
+    spectrum = np.fft.fftshift(np.fft.fft(signal * window)) / window.sum()
+    return PowerSpectrum(power=np.abs(spectrum) ** 2, f_hz=np.fft.fftshift(np.fft.fftfreq(n, 1.0 / prf_hz)))
+
+
+def body_doppler_track(signal, *, prf_hz, frame_s=0.032):
+    """Doppler of the strongest line in frames of ``frame_s`` (the body), at every chirp.
+
+    Per frame the peak of the spectrum is refined by a parabola through its neighbours; the track is
+    median-filtered over 5 frames and interpolated to the chirps.
+
+    Returns
+    -------
+    ndarray (len(signal),), Hz
+    """
+    frame_s = min(frame_s, len(signal) / prf_hz)
+    spec = spectrogram(signal, prf_hz=prf_hz, window_s=frame_s, hop_s=frame_s / 4)
+    log_power = np.log(spec.power + np.finfo(float).tiny)
+    peak = np.argmax(spec.power, axis=0)
+    inner = np.clip(peak, 1, len(spec.f_hz) - 2)
+    left, mid, right = (log_power[inner + d, np.arange(len(peak))] for d in (-1, 0, 1))
+    curvature = left - 2 * mid + right
+    shift = np.where(curvature < 0, 0.5 * (left - right) / np.where(curvature < 0, curvature, -1), 0.0)
+    f_peak = spec.f_hz[inner] + np.clip(shift, -0.5, 0.5) * (spec.f_hz[1] - spec.f_hz[0])
+    f_peak = median_filter(f_peak, size=min(5, len(f_peak)) | 1, mode="nearest")
+    t = np.arange(len(signal)) / prf_hz
+    return np.interp(t, spec.t_s, f_peak)
+
+
+def demodulate(signal, doppler_hz, *, prf_hz):
+    """Remove a time-varying Doppler: multiply by ``exp(-j 2 pi integral f dt)``."""
+    phase = 2 * np.pi * np.cumsum(doppler_hz) / prf_hz
+    return signal * np.exp(-1j * phase).astype(np.complex64)

@@ -1,0 +1,184 @@
+"""Features of one target's slow-time echo, each with a reason when it cannot be measured.
+
+Conventions: Doppler in Hz with the paper's sign (approaching positive); velocities in m/s,
+positive receding; every inversion uses :mod:`mdpipe.physics`, the functions the simulator uses.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mdpipe.physics import rotor
+from mdpipe.physics.radar import range_rate_from_doppler_mps
+from mdpipe.process import doppler, spectral
+from mdpipe.process.flashes import flash_period
+from mdpipe.process.wingbeat import wingbeat
+
+BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame
+BODY_FRAME_S = 0.032
+MIN_REV_PER_S, MAX_REV_PER_S = 10.0, 500.0
+MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
+MIN_PERIODICITY = 0.2        # wingbeat autocorrelation prominence needed
+
+
+@dataclass
+class TargetAnalysis:
+    """Everything measured on one target: the feature row and the spectra the figures show."""
+
+    row: dict
+    spectrum: doppler.PowerSpectrum
+    spectrogram: doppler.Spectrogram
+    band: spectral.Band
+    paper_extent_hz: tuple = None
+    flash_edges_hz: tuple = None
+    body_doppler_hz: np.ndarray = None
+    notes: list = field(default_factory=list)
+
+
+def body_line(signal, *, prf_hz):
+    """Body Doppler at every chirp when a body line stands out, and its median prominence (dB).
+
+    Per 32 ms frame the strongest line must stand ``BODY_LINE_DB`` above the strongest line more
+    than two bins away; otherwise (rotating parts only, or phase-locked rotors whose interference
+    skews the spectrum) there is no body line and the track is None.
+    """
+    spec = doppler.spectrogram(signal, prf_hz=prf_hz, window_s=min(BODY_FRAME_S, len(signal) / prf_hz),
+                               hop_s=BODY_FRAME_S / 4)
+    power = spec.power
+    peak = np.argmax(power, axis=0)
+    masked = power.copy()
+    for offset in range(-2, 3):
+        masked[np.clip(peak + offset, 0, len(spec.f_hz) - 1), np.arange(power.shape[1])] = 0.0
+    ratio_db = 10 * np.log10(power.max(axis=0) / np.maximum(masked.max(axis=0), np.finfo(float).tiny))
+    prominence = float(np.median(ratio_db))
+    if prominence < BODY_LINE_DB:
+        return None, prominence
+    return doppler.body_doppler_track(signal, prf_hz=prf_hz, frame_s=BODY_FRAME_S), prominence
+
+
+def difference(signal):
+    """First difference ``x[m] - x[m-1]``: a high-pass of response ``|2 sin(pi f / PRF)|``.
+
+    After demodulation the body sits near 0 Hz, with whatever slow wander the track left; the
+    difference suppresses it by ``(2 pi f_wander / PRF)^2`` in power while a flash, broadband, passes.
+    No cutoff has to be chosen; :func:`mdpipe.process.spectral.flash_edges` undoes the response.
+    """
+    return np.diff(signal, prepend=signal[:1])
+
+
+def display_window_s(row, params):
+    """Spectrogram window and hop: given, or from the physics of what was found."""
+    if params.stft_window_s is not None:
+        window = params.stft_window_s
+    elif row["chopping_freq_hz"] is not None:
+        window = 0.25 / row["chopping_freq_hz"]  # resolves the flashes
+    elif row["wingbeat_freq_hz"] is not None:
+        window = min(0.064, 0.2 / row["wingbeat_freq_hz"])  # ~15 Hz resolution, 5 frames a wingbeat
+    else:
+        window = 0.032
+    hop = params.stft_hop_s if params.stft_hop_s is not None else window / 4
+    return window, hop
+
+
+def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
+    """Measure every feature of one target's complex slow-time ``signal`` (channels combined).
+
+    Parameters
+    ----------
+    signal : ndarray (n_chirps,) complex
+    prf_hz, wavelength_m : float
+    noise_power : float
+        Noise power per chirp of ``signal`` (V^2).
+    params : ProcessParams
+    """
+    notes = []
+    n = len(signal)
+    dwell_s = n / prf_hz
+    s = np.asarray(signal, dtype=np.complex128)
+    s = s - s.mean()  # static clutter in this bin
+    moving = float(np.mean(np.abs(s) ** 2))
+    snr = (moving - noise_power) / noise_power if noise_power > 0 else np.inf
+    row = dict.fromkeys(["doppler_bw_hz", "doppler_bw_mps", "doppler_low_hz", "doppler_high_hz",
+                         "doppler_bw_spectrogram_hz", "chopping_freq_hz", "rotation_rate_hz", "rotation_period_s",
+                         "flash_period_s", "blade_length_m", "tip_doppler_hz", "body_doppler_hz", "body_velocity_mps",
+                         "wingbeat_freq_hz", "wingbeat_period_s", "micro_doppler_halfwidth_mps"])
+    row["snr_db"] = float(10 * np.log10(snr)) if snr > 0 else float("-inf")
+
+    track, prominence = body_line(s, prf_hz=prf_hz)
+    if track is not None:
+        demodulated = doppler.demodulate(s, track, prf_hz=prf_hz)
+        row["body_doppler_hz"] = float(np.mean(track))
+        row["body_velocity_mps"] = float(range_rate_from_doppler_mps(row["body_doppler_hz"], wavelength_m=wavelength_m))
+    else:
+        demodulated = s
+        notes.append(f"body velocity not estimable: no body line stands out of the micro-Doppler "
+                     f"({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the next line)")
+
+    plain = doppler.power_spectrum(s, prf_hz=prf_hz)
+    compensated = doppler.power_spectrum(demodulated, prf_hz=prf_hz)
+    band = spectral.occupied_band(compensated, spectral.periodogram_noise_level(noise_power, n),
+                                  smooth_hz=max(prf_hz / 200, 4 * compensated.resolution_hz))
+    aliased = band.aliased
+    half_width_hz = prf_hz / 2 if aliased else max(abs(band.low_hz), abs(band.high_hz), 0.0)
+    if np.isfinite(half_width_hz):
+        row["micro_doppler_halfwidth_mps"] = float(-range_rate_from_doppler_mps(half_width_hz, wavelength_m=wavelength_m))
+
+    extent = spectral.paper_extent(plain, threshold_db=params.threshold_db)
+    if aliased:
+        notes.append(f"Doppler bandwidth and blade length not estimable: aliased ({band.reason})")
+    elif extent is None:
+        notes.append(f"Doppler bandwidth not estimable: nothing {params.threshold_db:g} dB above the spectrum's mean")
+    else:
+        row["doppler_low_hz"], row["doppler_high_hz"] = extent
+        row["doppler_bw_hz"] = extent[1] - extent[0]
+        row["doppler_bw_mps"] = float(row["doppler_bw_hz"] * wavelength_m / 2)
+
+    flashes_per_turn = rotor.flashes_per_revolution(params.n_blades)
+    min_period = 1.0 / (flashes_per_turn * MAX_REV_PER_S)
+    max_period = 1.0 / (flashes_per_turn * MIN_REV_PER_S)
+    micro = difference(demodulated)
+    found = flash_period(micro, prf_hz=prf_hz, min_period_s=min_period, max_period_s=max_period)
+    edges = None
+    if found is None:
+        if dwell_s < 2 * max_period:
+            notes.append(f"rotation not estimable: dwell {dwell_s:.3g} s is shorter than two flash periods of the "
+                         f"slowest rotor searched ({2 * max_period:.3g} s)")
+        else:
+            notes.append("no periodic blade flashes")
+    else:
+        rate = float(rotor.rotation_rate_from_flash_period_hz(found.period_s, n_blades=params.n_blades))
+        row["flash_period_s"] = found.period_s
+        row["rotation_rate_hz"] = rate
+        row["rotation_period_s"] = 1.0 / rate
+        row["chopping_freq_hz"] = float(rotor.chopping_frequency_hz(rate, n_blades=params.n_blades))
+        span_check = spectral.flash_edges(micro, prf_hz=prf_hz, chopping_hz=row["chopping_freq_hz"], differenced=True)
+        if span_check.fills_span and not aliased:
+            aliased = True
+            notes.append(f"Doppler bandwidth and blade length not estimable: aliased (blade flashes fill the span "
+                         f"1/Tp = {prf_hz:.0f} Hz in {span_check.n_filled} of {span_check.n_frames} flash frames)")
+            row["doppler_bw_hz"] = row["doppler_bw_mps"] = row["doppler_low_hz"] = row["doppler_high_hz"] = None
+            row["micro_doppler_halfwidth_mps"] = float(-range_rate_from_doppler_mps(prf_hz / 2, wavelength_m=wavelength_m))
+        if not aliased:
+            edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, chopping_hz=row["chopping_freq_hz"])
+        if edges is not None and edges.low_hz is not None:
+            bandwidth = edges.high_hz - edges.low_hz
+            row["doppler_bw_spectrogram_hz"] = bandwidth
+            row["tip_doppler_hz"] = bandwidth / 2
+            if abs(params.elevation_deg) > MAX_ELEVATION_DEG:
+                notes.append(f"blade length not estimable: elevation {params.elevation_deg:g} deg (Eq. 6 divides by "
+                             f"cos(beta) = {np.cos(np.deg2rad(params.elevation_deg)):.2f})")
+            else:
+                row["blade_length_m"] = float(rotor.blade_length_from_bandwidth_m(
+                    bandwidth, rotation_rate_hz=rate, wavelength_m=wavelength_m, elevation_deg=params.elevation_deg))
+
+    beat = wingbeat(demodulated, prf_hz=prf_hz) if found is None else None  # flashes: not a bird
+    if beat is not None and beat.strength >= MIN_PERIODICITY and beat.repeats >= 2:
+        row["wingbeat_period_s"] = beat.period_s
+        row["wingbeat_freq_hz"] = 1.0 / beat.period_s
+    row["aliased"] = bool(aliased)
+    window, hop = display_window_s(row, params)
+    shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
+    row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
+    return TargetAnalysis(row=row, spectrum=plain, spectrogram=shown, band=band, paper_extent_hz=extent,
+                          flash_edges_hz=None if edges is None or edges.low_hz is None else (edges.low_hz, edges.high_hz),
+                          body_doppler_hz=track, notes=notes)

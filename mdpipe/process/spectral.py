@@ -1,0 +1,128 @@
+"""Measurements on Doppler spectra: occupied band and aliasing, the paper's bandwidth rule, flash edges.
+
+Frequencies are centred (``-PRF/2 .. PRF/2``), paper sign.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.ndimage import uniform_filter1d
+
+from mdpipe.process.doppler import spectrogram
+
+OCCUPIED_DB = 10.0        # micro-Doppler "present" this far above the noise level
+EDGE_FRACTION = 0.02      # within 2 % of the span's ends counts as touching them
+FILLED_FRACTION = 0.9     # a band over 90 % of the span has filled it
+HALF_AMPLITUDE_DB = 20 * np.log10(2)  # 6.02 dB: half amplitude, the edge of a rect spectrum
+FLASH_PERCENTILE = 80
+
+
+@dataclass(frozen=True)
+class Band:
+    """Occupied Doppler band of a spectrum: extent (Hz), fraction of the span, aliasing verdict and why."""
+
+    low_hz: float
+    high_hz: float
+    fraction: float
+    aliased: bool
+    reason: str
+
+
+def periodogram_noise_level(noise_power, n):
+    """Expected per-bin power of white noise of variance ``noise_power`` in :func:`power_spectrum` (Hann)."""
+    window = np.hanning(n + 1)[:-1]
+    return noise_power * np.sum(window ** 2) / np.sum(window) ** 2
+
+
+def occupied_band(spectrum, noise_level, *, smooth_hz):
+    """Where the spectrum (smoothed over ``smooth_hz``) stands ``OCCUPIED_DB`` above ``noise_level``.
+
+    Aliased when the band fills the span or reaches both of its ends: the micro-Doppler then wraps
+    and its true extent is unknown.
+    """
+    f, power = spectrum.f_hz, spectrum.power
+    width = max(1, int(round(smooth_hz / spectrum.resolution_hz)))
+    envelope = uniform_filter1d(power, width, mode="wrap")
+    occupied = envelope > noise_level * 10 ** (OCCUPIED_DB / 10)
+    if not occupied.any():
+        return Band(np.nan, np.nan, 0.0, False, "no Doppler band above the noise")
+    fraction = float(occupied.mean())
+    edge = max(1, int(EDGE_FRACTION * len(f)))
+    touches = occupied[:edge].any() and occupied[-edge:].any()
+    index = np.flatnonzero(occupied)
+    aliased = fraction >= FILLED_FRACTION or touches
+    reason = ""
+    if aliased:
+        reason = (f"micro-Doppler fills {fraction:.0%} of the span 1/Tp = {f[-1] - f[0] + spectrum.resolution_hz:.0f} Hz"
+                  if fraction >= FILLED_FRACTION else "micro-Doppler reaches both ends of the span 1/Tp")
+    return Band(float(f[index[0]]), float(f[index[-1]]), fraction, bool(aliased), reason)
+
+
+def paper_extent(spectrum, *, threshold_db):
+    """The paper's rule: the extent of the spectrum above its mean by ``threshold_db`` (None if nothing is)."""
+    level = 10 * np.log10(np.mean(spectrum.power)) + threshold_db
+    above = np.flatnonzero(10 * np.log10(spectrum.power + np.finfo(float).tiny) > level)
+    if len(above) == 0:
+        return None
+    return float(spectrum.f_hz[above[0]]), float(spectrum.f_hz[above[-1]])
+
+
+def _crossing(column, f_hz, index, step, level):
+    a, b = column[index], column[index + step]
+    t = (np.log(a) - np.log(level)) / (np.log(a) - np.log(b)) if a > b > 0 else 0.0
+    return f_hz[index] + step * t * (f_hz[1] - f_hz[0])
+
+
+@dataclass(frozen=True)
+class FlashEdges:
+    """Median Doppler edges of the blade flashes (None when no frame has both), frames used, frames filled."""
+
+    low_hz: float
+    high_hz: float
+    n_frames: int
+    n_filled: int
+
+    @property
+    def fills_span(self):
+        """Most flashes spread over the whole span: the tips alias."""
+        return self.n_filled > self.n_frames / 2
+
+
+def flash_edges(signal, *, prf_hz, chopping_hz, differenced=False):
+    """Doppler edges of the blade flashes, from a spectrogram whose window is a quarter chopping period.
+
+    A broadside blade's echo is a sinc in time whose spectrum is a rectangle reaching the tip
+    Doppler on both sides. In each flash frame (total power in the top fifth and a local maximum)
+    the edges are where the spectrum falls to half amplitude (-6.02 dB) of the frame's plateau
+    (median over its occupied part): for any symmetric window kernel the rectangle's edge lies
+    there. A frame whose plateau reaches both ends of the span has no edges: its tips alias.
+    ``differenced``: ``signal`` is a first difference; its response ``|2 sin(pi f / PRF)|^2`` is
+    divided out, and the two bins around 0 Hz (where it vanishes) are left out.
+    """
+    window_s = 0.25 / chopping_hz
+    spec = spectrogram(signal, prf_hz=prf_hz, window_s=window_s, hop_s=window_s / 8)
+    power, f = spec.power, spec.f_hz
+    if differenced:
+        response = (2 * np.sin(np.pi * f / prf_hz)) ** 2
+        near_zero = np.abs(f) <= 2 * (f[1] - f[0])
+        power = np.where(near_zero[:, None], np.nan, power / np.where(near_zero, 1.0, response)[:, None])
+    total = np.nansum(power, axis=0)
+    frames = np.flatnonzero((total > np.roll(total, 1)) & (total >= np.roll(total, -1))
+                            & (total > np.percentile(total, FLASH_PERCENTILE)))
+    lows, highs, filled = [], [], 0
+    for frame in frames:
+        column = power[:, frame]
+        valid = column[np.isfinite(column)]
+        plateau = np.median(valid[valid > np.percentile(valid, 99) * 1e-2])
+        level = plateau * 10 ** (-HALF_AMPLITUDE_DB / 10)
+        above = np.flatnonzero(np.nan_to_num(column, nan=level) >= level)
+        if above[0] == 0 and above[-1] == len(f) - 1:
+            filled += 1
+            continue
+        if above[0] == 0 or above[-1] == len(f) - 1:
+            continue
+        lows.append(_crossing(column, f, above[0], -1, level))
+        highs.append(_crossing(column, f, above[-1], 1, level))
+    if not lows:
+        return FlashEdges(None, None, len(frames), filled)
+    return FlashEdges(float(np.median(lows)), float(np.median(highs)), len(frames), filled)
