@@ -21,6 +21,13 @@ MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is
 MIN_PERIODICITY = 0.2        # wingbeat autocorrelation prominence needed
 
 
+FEATURE_KEYS = ("snr_db", "doppler_bw_hz", "doppler_bw_mps", "doppler_low_hz", "doppler_high_hz",
+                "doppler_bw_spectrogram_hz", "chopping_freq_hz", "rotation_rate_hz", "rotation_period_s",
+                "flash_period_s", "blade_length_m", "tip_doppler_hz", "body_doppler_hz", "body_velocity_mps",
+                "wingbeat_freq_hz", "wingbeat_period_s", "micro_doppler_halfwidth_mps", "aliased",
+                "stft_window_s", "stft_hop_s")
+
+
 @dataclass
 class TargetAnalysis:
     """Everything measured on one target: the feature row and the spectra the figures show."""
@@ -98,10 +105,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     s = s - s.mean()  # static clutter in this bin
     moving = float(np.mean(np.abs(s) ** 2))
     snr = (moving - noise_power) / noise_power if noise_power > 0 else np.inf
-    row = dict.fromkeys(["doppler_bw_hz", "doppler_bw_mps", "doppler_low_hz", "doppler_high_hz",
-                         "doppler_bw_spectrogram_hz", "chopping_freq_hz", "rotation_rate_hz", "rotation_period_s",
-                         "flash_period_s", "blade_length_m", "tip_doppler_hz", "body_doppler_hz", "body_velocity_mps",
-                         "wingbeat_freq_hz", "wingbeat_period_s", "micro_doppler_halfwidth_mps"])
+    row = dict.fromkeys(FEATURE_KEYS)
     row["snr_db"] = float(10 * np.log10(snr)) if snr > 0 else float("-inf")
 
     track, prominence = body_line(s, prf_hz=prf_hz)
@@ -137,7 +141,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     min_period = 1.0 / (flashes_per_turn * MAX_REV_PER_S)
     max_period = 1.0 / (flashes_per_turn * MIN_REV_PER_S)
     micro = difference(demodulated)
-    found = flash_period(micro, prf_hz=prf_hz, min_period_s=min_period, max_period_s=max_period)
+    found = flash_period(micro, prf_hz=prf_hz, min_period_s=min_period, max_period_s=max_period,
+                         noise_power=2 * noise_power)  # a difference doubles white noise
     edges = None
     if found is None:
         if dwell_s < 2 * max_period:
@@ -171,7 +176,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
                 row["blade_length_m"] = float(rotor.blade_length_from_bandwidth_m(
                     bandwidth, rotation_rate_hz=rate, wavelength_m=wavelength_m, elevation_deg=params.elevation_deg))
 
-    beat = wingbeat(demodulated, prf_hz=prf_hz) if found is None else None  # flashes: not a bird
+    beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power) if found is None else None
     if beat is not None and beat.strength >= MIN_PERIODICITY and beat.repeats >= 2:
         row["wingbeat_period_s"] = beat.period_s
         row["wingbeat_freq_hz"] = 1.0 / beat.period_s

@@ -21,11 +21,13 @@ from scipy.ndimage import uniform_filter1d
 from mdpipe.process.periodicity import find_period
 
 EVENT_SIGMAS = 6.0          # an event stands this many robust sigmas above the median power
+FALSE_EVENTS = 0.1          # noise events expected over a whole capture
 PAIR_WINDOW_CHIRPS = 1.5    # flash times are known to +-1 chirp
 PAIR_SIGMAS = 5.0           # a sub-period needs this many Poisson sigmas of excess pairs
 PAIR_SHARE = 0.25           # ... and this share of the excess found at T*
 MAX_DIVISOR = 6
 MIN_EVENTS = 6
+COVERAGE_PARTS = 4          # events must fall in every quarter of the dwell
 
 
 @dataclass(frozen=True)
@@ -39,12 +41,18 @@ class FlashPeriod:
     strength: float
 
 
-def flash_events(power):
-    """Local maxima of ``power`` more than ``EVENT_SIGMAS`` robust sigmas above its median (bool array)."""
+def flash_events(power, *, noise_power):
+    """Local maxima of ``power`` that neither noise nor the echo's own fluctuation explains (bool array).
+
+    Complex Gaussian noise of mean power p has exponentially distributed power: it exceeds
+    ``p ln(n / FALSE_EVENTS)`` in ``FALSE_EVENTS`` samples out of n. Events must clear that and
+    ``EVENT_SIGMAS`` robust sigmas above the median of ``power``.
+    """
     median = np.median(power)
     sigma = 1.4826 * np.median(np.abs(power - median))
+    threshold = max(median + EVENT_SIGMAS * sigma, noise_power * np.log(len(power) / FALSE_EVENTS))
     peak = (power > np.roll(power, 1)) & (power >= np.roll(power, -1))
-    return peak & (power > median + EVENT_SIGMAS * max(sigma, np.finfo(float).tiny))
+    return peak & (power > threshold)
 
 
 def _pair_excess(times, lag, n_samples):
@@ -56,12 +64,13 @@ def _pair_excess(times, lag, n_samples):
     return count - expected, (count - expected) / np.sqrt(max(expected, 1.0))
 
 
-def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s):
-    """Flash period of a body-free rotor echo ``micro_signal``; None when no periodic flashes are found."""
-    events = flash_events(np.abs(micro_signal) ** 2)
+def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s, noise_power):
+    """Flash period of a body-free rotor echo ``micro_signal`` (noise of mean power ``noise_power``); None
+    when no periodic flashes are found."""
+    events = flash_events(np.abs(micro_signal) ** 2, noise_power=noise_power)
     times = np.flatnonzero(events).astype(float)
-    if len(times) < MIN_EVENTS:
-        return None
+    if len(times) < MIN_EVENTS or len(np.unique(times * COVERAGE_PARTS // len(events))) < COVERAGE_PARTS:
+        return None  # a rotor flashes all through the dwell; a burst of glitches does not
     train = uniform_filter1d(events.astype(float), 3)
     found = find_period(train, sample_rate_hz=prf_hz, min_period_s=min_period_s, max_period_s=max_period_s)
     if found is None:

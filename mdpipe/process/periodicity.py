@@ -48,11 +48,19 @@ def _parabolic_peak(r, index):
 def find_period(signal, *, sample_rate_hz, min_period_s, max_period_s):
     """Strongest repeating period of ``signal`` between ``min_period_s`` and ``max_period_s``.
 
-    Lags up to half the signal are searched (two repeats at least). Strength is the peak's height
-    above the autocorrelation's running minimum over one candidate period (a baseline that the
-    decay of a broadband echo does not raise). Returns None when nothing repeats in the range.
+    See :func:`period_from_autocorrelation`. Returns None when nothing repeats in the range.
     """
-    r = autocorrelation(signal)
+    return period_from_autocorrelation(autocorrelation(signal), sample_rate_hz=sample_rate_hz,
+                                       min_period_s=min_period_s, max_period_s=max_period_s)
+
+
+def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s):
+    """The fundamental period in a normalised autocorrelation ``r`` (lag 0 first).
+
+    Lags up to half the record are searched (two repeats at least). Strength is the peak's height
+    above the running minimum over one shortest candidate period (a baseline that the decay of a
+    broadband echo does not raise).
+    """
     lo = max(2, int(np.ceil(min_period_s * sample_rate_hz)))
     hi = min(int(max_period_s * sample_rate_hz), len(r) // 2)
     if hi <= lo + 2:

@@ -8,7 +8,7 @@ from mdpipe import __version__
 from mdpipe.io import open_capture
 from mdpipe.process import ranging, selection
 from mdpipe.process.classify import classify
-from mdpipe.process.features import analyse_target
+from mdpipe.process.features import FEATURE_KEYS, analyse_target
 
 MIN_CHIRPS = 64
 
@@ -44,7 +44,7 @@ def _target_signals(reader, stats, detections, process):
 def _base_row(path, detection, stats, process, params):
     return {
         "file": str(path), "target": None, "class": "none", "range_m": None, "range_bin": None,
-        "range_min_m": None, "range_max_m": None, "snr_db": None,
+        "range_min_m": None, "range_max_m": None, **dict.fromkeys(FEATURE_KEYS),
         "elevation_deg": process.elevation_deg, "n_blades": process.n_blades, "threshold_db": process.threshold_db,
         "wavelength_m": params.wavelength_m, "prf_hz": params.prf_hz, "dwell_s": params.duration_s(stats.n_chirps),
         "mdpipe_version": __version__,

@@ -12,6 +12,7 @@ from scipy.ndimage import median_filter
 MIN_SEPARATION_BINS = 3  # Hann main lobe +-2 bins, plus the range-Doppler spread of fast blade tips
 SIDELOBE_DB = 40.0       # peaks this far below the strongest are taken for its range sidelobes
 TRACK_HALF_WIDTH_BINS = 2
+SWITCH_DB = 3.0
 
 
 @dataclass(frozen=True)
@@ -85,7 +86,11 @@ def channel_weights(covariance):
 
 
 def track(stats, detection):
-    """Gate index of the target in each chunk: the strongest bin within +-2 of the previous, median-filtered.
+    """Gate index of the target in each chunk, followed outwards from the chunk where it is strongest.
+
+    In each chunk the strongest bin within +-2 of the current one takes over only if it beats the
+    current bin by ``SWITCH_DB`` (hysteresis: a target between two bins does not flicker), then the
+    path is median-filtered over 5 chunks.
 
     Returns
     -------
@@ -94,14 +99,18 @@ def track(stats, detection):
     power = stats.chunk_power
     n_chunks, n_gate = power.shape
     path = np.empty(n_chunks, dtype=int)
-    current = detection.gate_index
-    start = int(np.argmax(power[:, current]))  # follow outwards from the chunk where it is strongest
-    for order in (range(start, n_chunks), range(start - 1, -1, -1)):
-        current = detection.gate_index if order.start == start else path[start]
-        for chunk in order:
+    start = int(np.argmax(power[:, detection.gate_index]))
+
+    def follow(chunks, current):
+        for chunk in chunks:
             lo, hi = max(current - TRACK_HALF_WIDTH_BINS, 0), min(current + TRACK_HALF_WIDTH_BINS + 1, n_gate)
-            current = lo + int(np.argmax(power[chunk, lo:hi]))
+            best = lo + int(np.argmax(power[chunk, lo:hi]))
+            if power[chunk, best] > power[chunk, current] * 10 ** (SWITCH_DB / 10):
+                current = best
             path[chunk] = current
+
+    follow(range(start, n_chunks), detection.gate_index)
+    follow(range(start - 1, -1, -1), path[start])
     return median_filter(path, size=min(5, n_chunks) | 1, mode="nearest")
 
 

@@ -1,35 +1,55 @@
-"""Wingbeat frequency: the period with which a bird's micro-Doppler signature repeats.
+"""Wingbeat frequency: the period with which a bird's micro-Doppler pattern repeats.
 
-The spectrogram of the body-demodulated echo (body line at 0 Hz, masked) is reduced to the
-micro-Doppler spread of each frame, ``sqrt(sum f^2 P / sum P)``: it swells twice per stroke
-direction but its pattern repeats once per wingbeat (up- and down-stroke mirror each other in
-Doppler, so the signed centroid would report twice the wingbeat). Its period is found as for
-rotors (:mod:`mdpipe.process.periodicity`).
+The log-spectrogram of the body-demodulated echo (body line at 0 Hz) is detrended along time in
+each Doppler row (a running mean over the longest wingbeat searched removes the slow change of a
+fly-by) and autocorrelated along time, summed over the rows: a whole Doppler pattern, signed, so
+the up- and down-strokes, which mirror each other, do not pass for two wingbeats. The fundamental
+is then found as for rotors (:mod:`mdpipe.process.periodicity`).
 """
 
 import numpy as np
+from scipy.ndimage import uniform_filter1d
 
 from mdpipe.process.doppler import spectrogram
-from mdpipe.process.periodicity import find_period
+from mdpipe.process.periodicity import period_from_autocorrelation
 
 FRAME_S = 0.064
 HOP_S = 0.016
 MIN_WINGBEAT_HZ = 0.3
 MAX_WINGBEAT_HZ = 20.0
+MAX_MICRO_DOPPLER_HZ = 2000.0  # rows kept: wings move at a few m/s (< 2 kHz even at 76 GHz)
+SIGNAL_ROW_DB = 10.0
 
 
-def micro_doppler_spread_hz(spec, *, body_halfwidth_hz):
-    """RMS Doppler of each frame outside ``+-body_halfwidth_hz`` (the masked body line), shape (frames,)."""
-    power = np.where(np.abs(spec.f_hz)[:, None] < body_halfwidth_hz, 0.0, spec.power)
-    total = power.sum(axis=0)
-    return np.sqrt((power * spec.f_hz[:, None] ** 2).sum(axis=0) / np.maximum(total, np.finfo(float).tiny))
+def pattern_autocorrelation(spec, *, detrend_frames, noise_level):
+    """Time autocorrelation of the detrended log-spectrogram, summed over Doppler, normalised (unbiased).
+
+    Only Doppler rows whose median power stands ``SIGNAL_ROW_DB`` above ``noise_level`` (per bin)
+    take part: rows of noise would only dilute the pattern.
+    """
+    power = spec.power[np.abs(spec.f_hz) <= MAX_MICRO_DOPPLER_HZ]
+    power = power[np.median(power, axis=1) > noise_level * 10 ** (SIGNAL_ROW_DB / 10)]
+    if len(power) == 0:
+        return np.zeros(spec.power.shape[1])
+    rows = np.log(power + np.finfo(float).tiny)
+    rows = rows - uniform_filter1d(rows, size=max(1, detrend_frames), axis=1, mode="nearest")
+    n = rows.shape[1]
+    spectra = np.fft.rfft(rows, n=2 * n, axis=1)
+    r = np.fft.irfft(np.abs(spectra) ** 2, axis=1)[:, :n].sum(axis=0) / np.arange(n, 0, -1)
+    return r / r[0] if r[0] > 0 else r
 
 
-def wingbeat(demodulated, *, prf_hz):
-    """Wingbeat period of a body-demodulated echo, or None. Needs two wingbeats in the dwell."""
+def wingbeat(demodulated, *, prf_hz, noise_power):
+    """Wingbeat period of a body-demodulated echo (noise ``noise_power`` per chirp), or None.
+
+    Needs two wingbeats in the dwell.
+    """
     frame_s = min(FRAME_S, len(demodulated) / prf_hz / 8)
-    spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=HOP_S * frame_s / FRAME_S)
-    spread = micro_doppler_spread_hz(spec, body_halfwidth_hz=3.0 / spec.window_s)
+    hop_s = HOP_S * frame_s / FRAME_S
+    spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=hop_s)
     frame_rate = 1.0 / spec.hop_s
-    return find_period(spread - spread.mean(), sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
-                       max_period_s=1.0 / MIN_WINGBEAT_HZ)
+    window = np.hanning(int(round(spec.window_s * prf_hz)) + 1)[:-1]
+    noise_level = noise_power * np.sum(window ** 2) / np.sum(window) ** 2
+    r = pattern_autocorrelation(spec, detrend_frames=int(2 * frame_rate / MIN_WINGBEAT_HZ), noise_level=noise_level)
+    return period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
+                                       max_period_s=1.0 / MIN_WINGBEAT_HZ)
