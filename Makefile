@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench-sim clean
+.PHONY: demo install test test-slow samples bench-sim batch clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -18,7 +18,8 @@ $(MDPIPE): pyproject.toml
 install: $(MDPIPE)
 
 demo: $(MDPIPE)
-	$(MDPIPE) info data_samples/fimi_1rx.h5
+	$(MDPIPE) process data_samples/*.h5 --out out/demo
+	$(MDPIPE) summarize out/demo
 
 test: $(MDPIPE)
 	$(BIN)/python -m pytest -q
@@ -42,6 +43,21 @@ data_samples/clutter_only.h5: configs/samples/clutter_only.yaml $(MDPIPE)
 BENCH_DIR ?= /tmp
 bench-sim: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_simulate.py --workdir $(BENCH_DIR)
+
+# Every capture under IN, processed in parallel (make -j4 batch IN=captures OUT=results). A capture is
+# processed again only when it is newer than its table; one that fails leaves OUT/<stem>.error.txt and
+# the others go on; `mdpipe summarize` then gathers OUT/features.csv and lists the failures.
+IN ?= data_samples
+OUT ?= out/batch
+CAPTURES := $(shell find $(IN) -name '*.h5' 2>/dev/null)
+TABLES := $(patsubst $(IN)/%.h5,$(OUT)/%.features.csv,$(CAPTURES))
+
+batch: $(TABLES)
+	$(MDPIPE) summarize $(OUT)
+
+$(OUT)/%.features.csv: $(IN)/%.h5 | $(MDPIPE)
+	@mkdir -p $(@D)
+	-$(MDPIPE) process $< --out $(@D) > /dev/null
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache

@@ -10,6 +10,7 @@ from mdpipe import __version__
 from mdpipe.errors import MdpipeError
 from mdpipe.io import open_capture
 from mdpipe.io.radarlog import ATTRIBUTES
+from mdpipe.params import RANGE_WINDOWS, ProcessParams
 from mdpipe.simulate.run import simulate_to_file
 from mdpipe.simulate.scene import load_scene_mapping, scene_from_mapping, scene_to_yaml
 
@@ -44,11 +45,16 @@ def attribute_overrides(func):
     return frame_counter(func)
 
 
+def reader_options(options):
+    """``frame_counter`` and ``overrides`` for :func:`mdpipe.io.open_capture` from the :func:`attribute_overrides` options."""
+    overrides = {name: options[name] for name in ATTRIBUTES if options[name] is not None}
+    return {"frame_counter": {"auto": "auto", "yes": True, "no": False}[options["frame_counter"]],
+            "overrides": overrides}
+
+
 def open_with_overrides(path, options):
     """Open ``path`` with the values of the :func:`attribute_overrides` options in ``options``."""
-    overrides = {name: options[name] for name in ATTRIBUTES if options[name] is not None}
-    frame_counter = {"auto": "auto", "yes": True, "no": False}[options["frame_counter"]]
-    return open_capture(path, frame_counter=frame_counter, overrides=overrides)
+    return open_capture(path, **reader_options(options))
 
 
 @click.group(cls=Group)
@@ -146,3 +152,110 @@ def info(capture, as_json, **options):
             click.echo("  truth (simulated):")
             for line in _format_truth(cap.truth["expected"]):
                 click.echo(line)
+
+
+@main.command()
+@click.argument("captures", nargs=-1, required=True, type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path), default=Path("."),
+              show_default=True, help="Folder for tables and figures.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object per target on stdout.")
+@click.option("--no-figures", is_flag=True, help="Write the tables only.")
+@click.option("--range-m", type=click.FloatRange(min=0, min_open=True), help="Analyse this range instead of detecting.")
+@click.option("--min-range-m", type=float, default=ProcessParams.min_range_m, show_default=True)
+@click.option("--max-range-m", type=float, default=ProcessParams.max_range_m, show_default=True)
+@click.option("--max-targets", type=click.IntRange(min=1), default=ProcessParams.max_targets, show_default=True)
+@click.option("--elevation-deg", type=float, default=ProcessParams.elevation_deg, show_default=True,
+              help="Elevation beta of the rotor plane (Eq. 6).")
+@click.option("--blades", "n_blades", type=click.IntRange(min=1), default=ProcessParams.n_blades, show_default=True,
+              help="Blades per rotor (N).")
+@click.option("--threshold-db", type=float, default=ProcessParams.threshold_db, show_default=True,
+              help="The paper's bandwidth rule: spectrum above its mean by this much.")
+@click.option("--range-window", type=click.Choice(RANGE_WINDOWS), default=ProcessParams.range_window, show_default=True)
+@click.option("--zero-pad", type=click.IntRange(1, 16), default=ProcessParams.zero_pad, show_default=True)
+@click.option("--stft-window-s", type=click.FloatRange(min=0, min_open=True), help="Spectrogram window [from physics].")
+@click.option("--stft-hop-s", type=click.FloatRange(min=0, min_open=True), help="Spectrogram hop [window / 4].")
+@attribute_overrides
+def process(captures, out_dir, as_json, no_figures, **options):
+    """Detect targets in each CAPTURE, measure their micro-Doppler features, call drone / bird / none.
+
+    Writes <stem>.features.csv, <stem>.run.json and <stem>_range.png, _spectrogram.png, _spectrum.png
+    into --out. A capture that cannot be processed is reported on one line and in <stem>.error.txt;
+    the others go on; the exit code is 2 if any failed.
+    """
+    from mdpipe.process.pipeline import process_capture
+    from mdpipe.report import tables
+
+    reader = reader_options(options)
+    params = ProcessParams(**{k: v for k, v in options.items() if k in ProcessParams.__dataclass_fields__})
+    out_dir.mkdir(parents=True, exist_ok=True)
+    failed = 0
+    for capture in captures:
+        stem = out_dir / capture.stem
+        try:
+            result = process_capture(capture, params, **reader)
+            tables.write_features_csv(result.rows, stem.with_name(stem.name + tables.FEATURES_SUFFIX))
+            tables.write_run_json(stem.with_name(stem.name + ".run.json"), capture=capture, params=params,
+                                  layout=result.layout, radar=result.params)
+            if not no_figures:
+                from mdpipe.report import plots
+
+                plots.range_figure(result, stem.with_name(stem.name + "_range.png"))
+                if result.analyses:
+                    plots.spectrogram_figure(result, stem.with_name(stem.name + "_spectrogram.png"))
+                    plots.spectrum_figure(result, stem.with_name(stem.name + "_spectrum.png"))
+            error_file = stem.with_name(stem.name + tables.ERROR_SUFFIX)
+            if error_file.exists():
+                error_file.unlink()
+        except (MdpipeError, OSError) as exc:
+            failed += 1
+            message = str(exc) if str(capture) in str(exc) else f"{capture}: {exc}"
+            click.echo(f"Error: {message}", err=True)
+            tables.write_error(stem.with_name(stem.name + tables.ERROR_SUFFIX), capture, message)
+            continue
+        for row in result.rows:
+            if as_json:
+                click.echo(json.dumps(tables.json_record(row)))
+            else:
+                click.echo(_summary_line(row), err=as_json)
+    if failed:
+        raise click.exceptions.Exit(2)
+
+
+def _summary_line(row):
+    if row["range_m"] is None:
+        return f"{row['file']}: none ({row['notes']})"
+    parts = [f"{row['file']}: {row['class']} at {row['range_m']:.1f} m, SNR {row['snr_db']:.1f} dB"]
+    for key, label, unit, scale in (("chopping_freq_hz", "chopping", "Hz", 1), ("rotation_rate_hz", "rotor", "rev/s", 1),
+                                    ("blade_length_m", "blade", "cm", 100), ("doppler_bw_hz", "BW", "Hz", 1),
+                                    ("wingbeat_freq_hz", "wingbeat", "Hz", 1), ("body_velocity_mps", "v", "m/s", 1)):
+        if row.get(key) is not None:
+            parts.append(f"{label} {row[key] * scale:.4g} {unit}")
+    if row.get("aliased"):
+        parts.append("aliased")
+    return ", ".join(parts)
+
+
+@main.command()
+@click.argument("folder", type=click.Path(exists=True, file_okay=False, path_type=Path))
+@click.option("--no-figure", is_flag=True)
+def summarize(folder, no_figure):
+    """Gather every <stem>.features.csv under FOLDER into FOLDER/features.csv (and summary.png).
+
+    Captures that failed (their <stem>.error.txt) are listed, one line each; the exit code is then 1.
+    """
+    from mdpipe.report import tables
+
+    features, errors = tables.summarize(folder)
+    tables.atomic_write(folder / "features.csv", lambda tmp: features.to_csv(tmp, index=False))
+    if not no_figure and len(features):
+        from mdpipe.report import plots
+
+        plots.summary_figure(features, folder / "summary.png")
+    counts = features["class"].value_counts().to_dict() if len(features) else {}
+    click.echo(f"{folder / 'features.csv'}: {len(features)} target rows from "
+               f"{features['file'].nunique() if len(features) else 0} captures "
+               f"({', '.join(f'{k} {v}' for k, v in sorted(counts.items())) or 'none'}); {len(errors)} failed")
+    for _, error in errors.iterrows():
+        click.echo(f"failed: {error['error']}")
+    if len(errors):
+        raise click.exceptions.Exit(1)

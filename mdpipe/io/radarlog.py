@@ -207,6 +207,13 @@ class RadarlogReader:
                 f"{self.path}: chirps {start}..{stop - 1} cannot be read ({str(exc).split('(')[0].strip()}); "
                 "the file is corrupt") from None
 
+    @property
+    def clip_level_v(self):
+        """Magnitude (V) at which int16 samples saturate, or None for float samples."""
+        if self.layout.sample_dtype != "int16":
+            return None
+        return 32767 * self.params.full_scale_v_per_lsb
+
     def read_chirps(self, start, stop, *, channels=None):
         """Chirps ``start:stop`` as float32 volts, shape (chirps, channels, samples)."""
         block = self._raw(start, stop, channels)[..., self._skip:]

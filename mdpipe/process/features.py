@@ -12,7 +12,7 @@ from mdpipe.physics import rotor
 from mdpipe.physics.radar import range_rate_from_doppler_mps
 from mdpipe.process import doppler, spectral
 from mdpipe.process.flashes import flash_period
-from mdpipe.process.wingbeat import wingbeat
+from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeat
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame
 BODY_FRAME_S = 0.032
@@ -180,6 +180,10 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     if beat is not None and beat.strength >= MIN_PERIODICITY and beat.repeats >= 2:
         row["wingbeat_period_s"] = beat.period_s
         row["wingbeat_freq_hz"] = 1.0 / beat.period_s
+    elif found is None:
+        slowest = max(MIN_WINGBEAT_HZ, 2.0 / dwell_s)
+        notes.append(f"no wingbeat between {slowest:.2g} and {MAX_WINGBEAT_HZ:g} Hz (a dwell of {dwell_s:.3g} s "
+                     f"holds two wingbeats only above {2.0 / dwell_s:.2g} Hz)")
     row["aliased"] = bool(aliased)
     window, hop = display_window_s(row, params)
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)

@@ -5,6 +5,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mdpipe import __version__
+from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
 from mdpipe.process import ranging, selection
 from mdpipe.process.classify import classify
@@ -57,8 +58,6 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None):
     Raises :class:`mdpipe.errors.CaptureFormatError` for unreadable files and
     :class:`mdpipe.errors.ParameterError` when the capture is too short to analyse.
     """
-    from mdpipe.errors import ParameterError
-
     with open_capture(path, frame_counter=frame_counter, overrides=overrides) as reader:
         params = reader.params
         if reader.n_chirps < MIN_CHIRPS:
@@ -67,6 +66,8 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None):
                                         min_range_m=process.min_range_m,
                                         max_range_m=min(process.max_range_m, params.max_range_m),
                                         chunk_chirps=process.chunk_chirps)
+        if stats.static_power.max() == 0 and stats.moving_power.max() == 0:
+            raise ParameterError(f"{path}: every sample is zero; the recording holds no signal")
         if len(stats.gate_bins) < 3:
             raise ParameterError(f"{path}: the range gate [{process.min_range_m:g}, {process.max_range_m:g}] m holds "
                                  f"{len(stats.gate_bins)} bin(s) of {params.range_bin_m:.3g} m; widen it")
@@ -76,13 +77,18 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None):
             detections = selection.detect(stats, detection_db=process.detection_db, max_targets=process.max_targets,
                                           zero_pad=process.zero_pad)
         noise = selection.noise_power(stats) / params.n_channels
+        capture_notes = []
+        if stats.clipped_fraction > 0:
+            capture_notes.append(f"{stats.clipped_fraction:.2%} of the samples sit at the int16 full scale (clipped): "
+                                 "amplitudes and spectra are distorted")
         rows, analyses = [], []
         if not detections:
             row = _base_row(path, None, stats, process, params)
             power = stats.gate_moving_power
             strongest = 10 * np.log10(power.max() / noise / params.n_channels) if noise > 0 else 0.0
-            row["notes"] = (f"no moving target above the noise in {process.min_range_m:g}-{process.max_range_m:g} m "
-                            f"(strongest bin {strongest:.1f} dB < {process.detection_db:g} dB)")
+            row["notes"] = "; ".join([f"no moving target above the noise in {process.min_range_m:g}-"
+                                      f"{process.max_range_m:g} m (strongest bin {strongest:.1f} dB < "
+                                      f"{process.detection_db:g} dB)"] + capture_notes)
             return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row])
         paths, signals = _target_signals(reader, stats, detections, process)
     for index, (detection, path_gates, (signal, _, gains)) in enumerate(zip(detections, paths, signals)):
@@ -95,7 +101,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None):
         row.update(analysis.row)
         label, reason = classify(row, detected=True)
         row["class"] = label
-        row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes)
+        row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + capture_notes)
         rows.append(row)
         analyses.append(analysis)
     return CaptureResult(str(path), params, "", stats, detections, analyses, rows)

@@ -50,6 +50,8 @@ class GateStatistics:
     chunk_t_s : ndarray (n_chunks,)
         Centre time of each chunk.
     n_chirps : int
+    clipped_fraction : float
+        Share of the samples at the int16 full scale (0 for float samples).
     """
 
     range_m: np.ndarray
@@ -61,6 +63,7 @@ class GateStatistics:
     chunk_power: np.ndarray
     chunk_t_s: np.ndarray
     n_chirps: int
+    clipped_fraction: float = 0.0
 
     @property
     def gate_range_m(self):
@@ -84,7 +87,11 @@ def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_r
     power = np.zeros(len(ranges))
     cross = np.zeros((len(gate), n_ch, n_ch), dtype=np.complex128)
     chunk_power, chunk_t = [], []
+    clip_level = reader.clip_level_v
+    clipped = 0
     for first, block in reader.iter_chunks(chunk_chirps=chunk_chirps):
+        if clip_level is not None:
+            clipped += int(np.count_nonzero(np.abs(block) >= np.float32(clip_level)))
         spectrum = np.conj(np.fft.rfft(block * win, n=n_fft, axis=-1))  # (M, C, bins)
         total += spectrum.sum(axis=0).T
         power += np.einsum("mcb,mcb->b", spectrum, spectrum.conj()).real
@@ -102,7 +109,8 @@ def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_r
     return GateStatistics(range_m=ranges, static_power=static, moving_power=np.maximum(moving, 0.0),
                           gate_bins=gate, mean=gmean, covariance=covariance,
                           chunk_power=np.array(chunk_power).reshape(-1, len(gate)),
-                          chunk_t_s=np.array(chunk_t), n_chirps=n)
+                          chunk_t_s=np.array(chunk_t), n_chirps=n,
+                          clipped_fraction=clipped / (n * n_ch * params.n_samples))
 
 
 def slow_time(reader, bins, weights, *, window="hann", zero_pad=1, chunk_chirps=256):

@@ -1,0 +1,1 @@
+"""Tables and figures. matplotlib is imported only in :mod:`mdpipe.report.plots`."""
