@@ -40,14 +40,15 @@ def spectrogram(signal, *, prf_hz, window_s, hop_s):
 
     ``window_s`` and ``hop_s`` are rounded to whole chirps (at least 8 and 1).
     """
-    n_window = max(8, int(round(window_s * prf_hz)))
-    n_window = min(n_window, len(signal))
+    n_window = min(max(8, int(round(window_s * prf_hz))), max(2, len(signal) // 2))
     hop = max(1, int(round(hop_s * prf_hz)))
     stft = ShortTimeFFT(hann(n_window, sym=False), hop=hop, fs=prf_hz, fft_mode="centered",
                         scale_to="magnitude")
     first, last = stft.lower_border_end[1], stft.upper_border_begin(len(signal))[1]
-    power = np.abs(stft.stft(signal, p0=first, p1=max(last, first + 1))) ** 2
-    return Spectrogram(power=power, t_s=stft.t(len(signal), p0=first, p1=max(last, first + 1)), f_hz=stft.f,
+    if last <= first:  # too short for a frame free of the borders: keep the padded ones
+        first, last = stft.p_min, stft.p_max(len(signal))
+    power = np.abs(stft.stft(signal, p0=first, p1=last)) ** 2
+    return Spectrogram(power=power, t_s=stft.t(len(signal), p0=first, p1=last), f_hz=stft.f,
                        window_s=n_window / prf_hz, hop_s=hop / prf_hz)
 
 

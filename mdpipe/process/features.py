@@ -12,6 +12,7 @@ from mdpipe.physics import rotor
 from mdpipe.physics.radar import range_rate_from_doppler_mps
 from mdpipe.process import doppler, spectral
 from mdpipe.process.flashes import flash_period
+from mdpipe.process.periodicity import find_period
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeat
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame
@@ -19,6 +20,10 @@ BODY_FRAME_S = 0.032
 MIN_REV_PER_S, MAX_REV_PER_S = 10.0, 500.0
 MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
 MIN_PERIODICITY = 0.2        # wingbeat autocorrelation prominence needed
+MIN_ROTOR_PERIODICITY = 0.6  # a rotor's echo repeats almost exactly (measured 0.93-0.95; a gull's best: 0.40)
+BROAD_BAND_SHARE = 0.1       # a band over 10 % of the half-span is cut at a share of its width ...
+HIGHPASS_SHARE = 0.25        # ... this share; narrower (or unseen) bands use a first difference
+ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
 
 
 FEATURE_KEYS = ("snr_db", "doppler_bw_hz", "doppler_bw_mps", "doppler_low_hz", "doppler_high_hz",
@@ -63,12 +68,21 @@ def body_line(signal, *, prf_hz):
     return doppler.body_doppler_track(signal, prf_hz=prf_hz, frame_s=BODY_FRAME_S), prominence
 
 
+def highpass(signal, *, prf_hz, cutoff_hz):
+    """Remove everything within +-cutoff_hz of 0 Hz (FFT mask): the demodulated body and its wander."""
+    spectrum = np.fft.fft(signal)
+    spectrum[np.abs(np.fft.fftfreq(len(signal), 1.0 / prf_hz)) < cutoff_hz] = 0.0
+    return np.fft.ifft(spectrum)
+
+
 def difference(signal):
     """First difference ``x[m] - x[m-1]``: a high-pass of response ``|2 sin(pi f / PRF)|``.
 
     After demodulation the body sits near 0 Hz, with whatever slow wander the track left; the
-    difference suppresses it by ``(2 pi f_wander / PRF)^2`` in power while a flash, broadband, passes.
-    No cutoff has to be chosen; :func:`mdpipe.process.spectral.flash_edges` undoes the response.
+    difference suppresses it by ``(2 pi f_wander / PRF)^2`` in power while a flash that is broadband
+    against the PRF passes. Used when the micro-Doppler band is narrow or invisible in the dwell
+    spectrum (weak, aliased flashes; birds), where no cutoff can be read from the band;
+    :func:`mdpipe.process.spectral.flash_edges` undoes the response.
     """
     return np.diff(signal, prepend=signal[:1])
 
@@ -140,9 +154,30 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     flashes_per_turn = rotor.flashes_per_revolution(params.n_blades)
     min_period = 1.0 / (flashes_per_turn * MAX_REV_PER_S)
     max_period = 1.0 / (flashes_per_turn * MIN_REV_PER_S)
-    micro = difference(demodulated)
-    found = flash_period(micro, prf_hz=prf_hz, min_period_s=min_period, max_period_s=max_period,
-                         noise_power=2 * noise_power)  # a difference doubles white noise
+    strobe = spectral.flash_edges(difference(demodulated), prf_hz=prf_hz, window_s=ALIAS_CHECK_CHIRPS / prf_hz,
+                                  noise_power=noise_power, differenced=True)
+    if strobe.fills_span and not aliased:
+        aliased = True
+        notes.append(f"Doppler bandwidth and blade length not estimable: aliased (the brightest frames fill the "
+                     f"span 1/Tp = {prf_hz:.0f} Hz in {strobe.n_filled} of {strobe.n_frames})")
+        row["doppler_bw_hz"] = row["doppler_bw_mps"] = row["doppler_low_hz"] = row["doppler_high_hz"] = None
+        half_width_hz = prf_hz / 2
+        row["micro_doppler_halfwidth_mps"] = float(-range_rate_from_doppler_mps(half_width_hz, wavelength_m=wavelength_m))
+    differenced = aliased or not half_width_hz >= BROAD_BAND_SHARE * prf_hz / 2
+    if differenced:  # narrow or unseen band: short (often stroboscopic) flashes; time them
+        micro = difference(demodulated)
+        found = flash_period(micro, prf_hz=prf_hz, min_period_s=min_period, max_period_s=max_period,
+                             noise_power=2 * noise_power)  # a difference doubles white noise
+        rate = None if found is None else float(rotor.rotation_rate_from_flash_period_hz(
+            found.period_s, n_blades=params.n_blades))
+    else:  # broad band, well sampled: the echo itself repeats every 1/(N f_rot), for even and odd N
+        micro = highpass(demodulated, prf_hz=prf_hz, cutoff_hz=HIGHPASS_SHARE * half_width_hz)
+        found = find_period(micro, sample_rate_hz=prf_hz, min_period_s=1.0 / (params.n_blades * MAX_REV_PER_S),
+                            max_period_s=1.0 / (params.n_blades * MIN_REV_PER_S))
+        if found is not None and found.strength < MIN_ROTOR_PERIODICITY:
+            found = None
+        rate = None if found is None else float(rotor.rotation_rate_from_chopping_hz(
+            1.0 / found.period_s, n_blades=params.n_blades))
     edges = None
     if found is None:
         if dwell_s < 2 * max_period:
@@ -151,20 +186,13 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
         else:
             notes.append("no periodic blade flashes")
     else:
-        rate = float(rotor.rotation_rate_from_flash_period_hz(found.period_s, n_blades=params.n_blades))
-        row["flash_period_s"] = found.period_s
         row["rotation_rate_hz"] = rate
         row["rotation_period_s"] = 1.0 / rate
+        row["flash_period_s"] = float(rotor.flash_period_s(rate, n_blades=params.n_blades))
         row["chopping_freq_hz"] = float(rotor.chopping_frequency_hz(rate, n_blades=params.n_blades))
-        span_check = spectral.flash_edges(micro, prf_hz=prf_hz, chopping_hz=row["chopping_freq_hz"], differenced=True)
-        if span_check.fills_span and not aliased:
-            aliased = True
-            notes.append(f"Doppler bandwidth and blade length not estimable: aliased (blade flashes fill the span "
-                         f"1/Tp = {prf_hz:.0f} Hz in {span_check.n_filled} of {span_check.n_frames} flash frames)")
-            row["doppler_bw_hz"] = row["doppler_bw_mps"] = row["doppler_low_hz"] = row["doppler_high_hz"] = None
-            row["micro_doppler_halfwidth_mps"] = float(-range_rate_from_doppler_mps(prf_hz / 2, wavelength_m=wavelength_m))
         if not aliased:
-            edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, chopping_hz=row["chopping_freq_hz"])
+            edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, window_s=0.25 / row["chopping_freq_hz"],
+                                         noise_power=noise_power)
         if edges is not None and edges.low_hz is not None:
             bandwidth = edges.high_hz - edges.low_hz
             row["doppler_bw_spectrogram_hz"] = bandwidth

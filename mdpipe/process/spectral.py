@@ -84,24 +84,30 @@ class FlashEdges:
 
     @property
     def fills_span(self):
-        """Most flashes spread over the whole span: the tips alias."""
-        return self.n_filled > self.n_frames / 2
+        """Most (and at least three) flashes spread over the whole span: the tips alias."""
+        return self.n_filled >= 3 and self.n_filled > self.n_frames / 2
 
 
-def flash_edges(signal, *, prf_hz, chopping_hz, differenced=False):
-    """Doppler edges of the blade flashes, from a spectrogram whose window is a quarter chopping period.
+def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False):
+    """Doppler edges of the blade flashes, from a spectrogram of window ``window_s`` (hop an eighth).
+
+    For the edges the window should be a quarter chopping period (it holds one flash whole); to see
+    whether flashes fill the span, any window a few chirps long does.
 
     A broadside blade's echo is a sinc in time whose spectrum is a rectangle reaching the tip
     Doppler on both sides. In each flash frame (total power in the top fifth and a local maximum)
     the edges are where the spectrum falls to half amplitude (-6.02 dB) of the frame's plateau
     (median over its occupied part): for any symmetric window kernel the rectangle's edge lies
     there. A frame whose plateau reaches both ends of the span has no edges: its tips alias.
+    Frames whose plateau is not ``OCCUPIED_DB`` above the noise (``noise_power`` per chirp of the
+    undifferenced echo) are not flashes and are left out.
     ``differenced``: ``signal`` is a first difference; its response ``|2 sin(pi f / PRF)|^2`` is
     divided out, and the two bins around 0 Hz (where it vanishes) are left out.
     """
-    window_s = 0.25 / chopping_hz
     spec = spectrogram(signal, prf_hz=prf_hz, window_s=window_s, hop_s=window_s / 8)
     power, f = spec.power, spec.f_hz
+    window = np.hanning(int(round(spec.window_s * prf_hz)) + 1)[:-1]
+    noise_level = noise_power * np.sum(window ** 2) / np.sum(window) ** 2
     if differenced:
         response = (2 * np.sin(np.pi * f / prf_hz)) ** 2
         near_zero = np.abs(f) <= 2 * (f[1] - f[0])
@@ -109,11 +115,14 @@ def flash_edges(signal, *, prf_hz, chopping_hz, differenced=False):
     total = np.nansum(power, axis=0)
     frames = np.flatnonzero((total > np.roll(total, 1)) & (total >= np.roll(total, -1))
                             & (total > np.percentile(total, FLASH_PERCENTILE)))
-    lows, highs, filled = [], [], 0
+    lows, highs, filled, used = [], [], 0, 0
     for frame in frames:
         column = power[:, frame]
         valid = column[np.isfinite(column)]
         plateau = np.median(valid[valid > np.percentile(valid, 99) * 1e-2])
+        if plateau < noise_level * 10 ** (OCCUPIED_DB / 10):
+            continue
+        used += 1
         level = plateau * 10 ** (-HALF_AMPLITUDE_DB / 10)
         above = np.flatnonzero(np.nan_to_num(column, nan=level) >= level)
         if above[0] == 0 and above[-1] == len(f) - 1:
@@ -124,5 +133,5 @@ def flash_edges(signal, *, prf_hz, chopping_hz, differenced=False):
         lows.append(_crossing(column, f, above[0], -1, level))
         highs.append(_crossing(column, f, above[-1], 1, level))
     if not lows:
-        return FlashEdges(None, None, len(frames), filled)
-    return FlashEdges(float(np.median(lows)), float(np.median(highs)), len(frames), filled)
+        return FlashEdges(None, None, used, filled)
+    return FlashEdges(float(np.median(lows)), float(np.median(highs)), used, filled)
