@@ -101,6 +101,115 @@ def display_window_s(row, params):
     return window, hop
 
 
+def _speed_mps(doppler_hz_, wavelength_m):
+    return float(-range_rate_from_doppler_mps(doppler_hz_, wavelength_m=wavelength_m))
+
+
+def _mark_aliased(row, notes, reason, *, prf_hz, wavelength_m):
+    """Withhold what aliasing makes unmeasurable, and say why."""
+    row["doppler_bw_hz"] = row["doppler_bw_mps"] = row["doppler_low_hz"] = row["doppler_high_hz"] = None
+    row["micro_doppler_halfwidth_mps"] = _speed_mps(prf_hz / 2, wavelength_m)
+    notes.append(f"Doppler bandwidth and blade length not estimable: aliased ({reason})")
+
+
+def _body_motion(s, *, prf_hz, wavelength_m, row, notes):
+    """Body Doppler and velocity when a body line exists; the echo demodulated by it (or as it is)."""
+    track, prominence = body_line(s, prf_hz=prf_hz)
+    if track is None:
+        notes.append(f"body velocity not estimable: no body line stands out of the micro-Doppler "
+                     f"({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the next line)")
+        return s, None
+    row["body_doppler_hz"] = float(np.mean(track))
+    row["body_velocity_mps"] = float(range_rate_from_doppler_mps(row["body_doppler_hz"], wavelength_m=wavelength_m))
+    return doppler.demodulate(s, track, prf_hz=prf_hz), track
+
+
+def _doppler_band(s, demodulated, *, prf_hz, wavelength_m, noise_power, params, row, notes):
+    """Occupied band, aliasing, and the paper's bandwidth. Returns (spectrum, band, extent, aliased, half-width)."""
+    plain = doppler.power_spectrum(s, prf_hz=prf_hz)
+    compensated = doppler.power_spectrum(demodulated, prf_hz=prf_hz)
+    band = spectral.occupied_band(compensated, spectral.periodogram_noise_level(noise_power, len(s)),
+                                  smooth_hz=max(prf_hz / 200, 4 * compensated.resolution_hz))
+    extent = spectral.paper_extent(plain, threshold_db=params.threshold_db)
+    half_width_hz = max(abs(band.low_hz), abs(band.high_hz), 0.0)
+    if np.isfinite(half_width_hz):
+        row["micro_doppler_halfwidth_mps"] = _speed_mps(half_width_hz, wavelength_m)
+    if extent is None:
+        notes.append(f"Doppler bandwidth not estimable: nothing {params.threshold_db:g} dB above the spectrum's mean")
+    else:
+        row["doppler_low_hz"], row["doppler_high_hz"] = extent
+        row["doppler_bw_hz"] = extent[1] - extent[0]
+        row["doppler_bw_mps"] = float(row["doppler_bw_hz"] * wavelength_m / 2)
+    reason = band.reason if band.aliased else None
+    if reason is None:
+        strobe = spectral.flash_edges(difference(demodulated), prf_hz=prf_hz, window_s=ALIAS_CHECK_CHIRPS / prf_hz,
+                                      noise_power=noise_power, differenced=True)
+        if strobe.fills_span:
+            reason = (f"the brightest frames fill the span 1/Tp = {prf_hz:.0f} Hz in {strobe.n_filled} of "
+                      f"{strobe.n_frames}")
+    if reason is not None:
+        _mark_aliased(row, notes, reason, prf_hz=prf_hz, wavelength_m=wavelength_m)
+        half_width_hz = prf_hz / 2
+    return plain, band, extent, reason is not None, half_width_hz
+
+
+def _rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, notes):
+    """Rotation rate (rev/s) from the blade flashes, or None with the reason in ``notes``.
+
+    Broad, unaliased bands (well-sampled flashes): the body-free echo repeats every 1/(N f_rot)
+    for even and odd N. Narrow, unseen or aliased bands (short, often stroboscopic flashes): flash
+    timing on the first difference of the echo.
+    """
+    max_period = 1.0 / (rotor.flashes_per_revolution(n_blades) * MIN_REV_PER_S)
+    if aliased or not half_width_hz >= BROAD_BAND_SHARE * prf_hz / 2:
+        found = flash_period(difference(demodulated), prf_hz=prf_hz,
+                             min_period_s=1.0 / (rotor.flashes_per_revolution(n_blades) * MAX_REV_PER_S),
+                             max_period_s=max_period, noise_power=2 * noise_power)  # a difference doubles noise
+        rate = None if found is None else rotor.rotation_rate_from_flash_period_hz(found.period_s, n_blades=n_blades)
+    else:
+        micro = highpass(demodulated, prf_hz=prf_hz, cutoff_hz=HIGHPASS_SHARE * half_width_hz)
+        found = find_period(micro, sample_rate_hz=prf_hz, min_period_s=1.0 / (n_blades * MAX_REV_PER_S),
+                            max_period_s=1.0 / (n_blades * MIN_REV_PER_S))
+        if found is not None and found.strength < MIN_ROTOR_PERIODICITY:
+            found = None
+        rate = None if found is None else rotor.rotation_rate_from_chopping_hz(1.0 / found.period_s, n_blades=n_blades)
+    if rate is None:
+        notes.append(f"rotation not estimable: dwell {dwell_s:.3g} s is shorter than two flash periods of the slowest "
+                     f"rotor searched ({2 * max_period:.3g} s)" if dwell_s < 2 * max_period
+                     else "no periodic blade flashes")
+        return None
+    return float(rate)
+
+
+def _blade_length(demodulated, *, rate_hz, prf_hz, wavelength_m, noise_power, params, row, notes):
+    """Tip Doppler from the flash edges, and r by inverting Eq. 6. Returns the edges (or None)."""
+    edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, window_s=0.25 / row["chopping_freq_hz"],
+                                 noise_power=noise_power)
+    if edges.low_hz is None:
+        notes.append("blade length not estimable: no flash frame with both Doppler edges inside the span")
+        return None
+    bandwidth = edges.high_hz - edges.low_hz
+    row["doppler_bw_spectrogram_hz"] = bandwidth
+    row["tip_doppler_hz"] = bandwidth / 2
+    if abs(params.elevation_deg) > MAX_ELEVATION_DEG:
+        notes.append(f"blade length not estimable: elevation {params.elevation_deg:g} deg (Eq. 6 divides by "
+                     f"cos(beta) = {np.cos(np.deg2rad(params.elevation_deg)):.2f})")
+    else:
+        row["blade_length_m"] = float(rotor.blade_length_from_bandwidth_m(
+            bandwidth, rotation_rate_hz=rate_hz, wavelength_m=wavelength_m, elevation_deg=params.elevation_deg))
+    return edges.low_hz, edges.high_hz
+
+
+def _wingbeat(demodulated, *, prf_hz, noise_power, dwell_s, row, notes):
+    beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power)
+    if beat is not None and beat.strength >= MIN_PERIODICITY and beat.repeats >= 2:
+        row["wingbeat_period_s"] = beat.period_s
+        row["wingbeat_freq_hz"] = 1.0 / beat.period_s
+    else:
+        notes.append(f"no wingbeat between {max(MIN_WINGBEAT_HZ, 2.0 / dwell_s):.2g} and {MAX_WINGBEAT_HZ:g} Hz "
+                     f"(a dwell of {dwell_s:.3g} s holds two wingbeats only above {2.0 / dwell_s:.2g} Hz)")
+
+
 def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     """Measure every feature of one target's complex slow-time ``signal`` (channels combined).
 
@@ -113,109 +222,33 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     params : ProcessParams
     """
     notes = []
-    n = len(signal)
-    dwell_s = n / prf_hz
+    dwell_s = len(signal) / prf_hz
     s = np.asarray(signal, dtype=np.complex128)
     s = s - s.mean()  # static clutter in this bin
     moving = float(np.mean(np.abs(s) ** 2))
     snr = (moving - noise_power) / noise_power if noise_power > 0 else np.inf
     row = dict.fromkeys(FEATURE_KEYS)
     row["snr_db"] = float(10 * np.log10(snr)) if snr > 0 else float("-inf")
-
-    track, prominence = body_line(s, prf_hz=prf_hz)
-    if track is not None:
-        demodulated = doppler.demodulate(s, track, prf_hz=prf_hz)
-        row["body_doppler_hz"] = float(np.mean(track))
-        row["body_velocity_mps"] = float(range_rate_from_doppler_mps(row["body_doppler_hz"], wavelength_m=wavelength_m))
-    else:
-        demodulated = s
-        notes.append(f"body velocity not estimable: no body line stands out of the micro-Doppler "
-                     f"({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the next line)")
-
-    plain = doppler.power_spectrum(s, prf_hz=prf_hz)
-    compensated = doppler.power_spectrum(demodulated, prf_hz=prf_hz)
-    band = spectral.occupied_band(compensated, spectral.periodogram_noise_level(noise_power, n),
-                                  smooth_hz=max(prf_hz / 200, 4 * compensated.resolution_hz))
-    aliased = band.aliased
-    half_width_hz = prf_hz / 2 if aliased else max(abs(band.low_hz), abs(band.high_hz), 0.0)
-    if np.isfinite(half_width_hz):
-        row["micro_doppler_halfwidth_mps"] = float(-range_rate_from_doppler_mps(half_width_hz, wavelength_m=wavelength_m))
-
-    extent = spectral.paper_extent(plain, threshold_db=params.threshold_db)
-    if aliased:
-        notes.append(f"Doppler bandwidth and blade length not estimable: aliased ({band.reason})")
-    elif extent is None:
-        notes.append(f"Doppler bandwidth not estimable: nothing {params.threshold_db:g} dB above the spectrum's mean")
-    else:
-        row["doppler_low_hz"], row["doppler_high_hz"] = extent
-        row["doppler_bw_hz"] = extent[1] - extent[0]
-        row["doppler_bw_mps"] = float(row["doppler_bw_hz"] * wavelength_m / 2)
-
-    flashes_per_turn = rotor.flashes_per_revolution(params.n_blades)
-    min_period = 1.0 / (flashes_per_turn * MAX_REV_PER_S)
-    max_period = 1.0 / (flashes_per_turn * MIN_REV_PER_S)
-    strobe = spectral.flash_edges(difference(demodulated), prf_hz=prf_hz, window_s=ALIAS_CHECK_CHIRPS / prf_hz,
-                                  noise_power=noise_power, differenced=True)
-    if strobe.fills_span and not aliased:
-        aliased = True
-        notes.append(f"Doppler bandwidth and blade length not estimable: aliased (the brightest frames fill the "
-                     f"span 1/Tp = {prf_hz:.0f} Hz in {strobe.n_filled} of {strobe.n_frames})")
-        row["doppler_bw_hz"] = row["doppler_bw_mps"] = row["doppler_low_hz"] = row["doppler_high_hz"] = None
-        half_width_hz = prf_hz / 2
-        row["micro_doppler_halfwidth_mps"] = float(-range_rate_from_doppler_mps(half_width_hz, wavelength_m=wavelength_m))
-    differenced = aliased or not half_width_hz >= BROAD_BAND_SHARE * prf_hz / 2
-    if differenced:  # narrow or unseen band: short (often stroboscopic) flashes; time them
-        micro = difference(demodulated)
-        found = flash_period(micro, prf_hz=prf_hz, min_period_s=min_period, max_period_s=max_period,
-                             noise_power=2 * noise_power)  # a difference doubles white noise
-        rate = None if found is None else float(rotor.rotation_rate_from_flash_period_hz(
-            found.period_s, n_blades=params.n_blades))
-    else:  # broad band, well sampled: the echo itself repeats every 1/(N f_rot), for even and odd N
-        micro = highpass(demodulated, prf_hz=prf_hz, cutoff_hz=HIGHPASS_SHARE * half_width_hz)
-        found = find_period(micro, sample_rate_hz=prf_hz, min_period_s=1.0 / (params.n_blades * MAX_REV_PER_S),
-                            max_period_s=1.0 / (params.n_blades * MIN_REV_PER_S))
-        if found is not None and found.strength < MIN_ROTOR_PERIODICITY:
-            found = None
-        rate = None if found is None else float(rotor.rotation_rate_from_chopping_hz(
-            1.0 / found.period_s, n_blades=params.n_blades))
+    demodulated, track = _body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m, row=row, notes=notes)
+    plain, band, extent, aliased, half_width_hz = _doppler_band(
+        s, demodulated, prf_hz=prf_hz, wavelength_m=wavelength_m, noise_power=noise_power, params=params,
+        row=row, notes=notes)
+    rate = _rotation(demodulated, aliased=aliased, half_width_hz=half_width_hz, prf_hz=prf_hz,
+                     noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s, notes=notes)
     edges = None
-    if found is None:
-        if dwell_s < 2 * max_period:
-            notes.append(f"rotation not estimable: dwell {dwell_s:.3g} s is shorter than two flash periods of the "
-                         f"slowest rotor searched ({2 * max_period:.3g} s)")
-        else:
-            notes.append("no periodic blade flashes")
-    else:
+    if rate is not None:
         row["rotation_rate_hz"] = rate
         row["rotation_period_s"] = 1.0 / rate
         row["flash_period_s"] = float(rotor.flash_period_s(rate, n_blades=params.n_blades))
         row["chopping_freq_hz"] = float(rotor.chopping_frequency_hz(rate, n_blades=params.n_blades))
         if not aliased:
-            edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, window_s=0.25 / row["chopping_freq_hz"],
-                                         noise_power=noise_power)
-        if edges is not None and edges.low_hz is not None:
-            bandwidth = edges.high_hz - edges.low_hz
-            row["doppler_bw_spectrogram_hz"] = bandwidth
-            row["tip_doppler_hz"] = bandwidth / 2
-            if abs(params.elevation_deg) > MAX_ELEVATION_DEG:
-                notes.append(f"blade length not estimable: elevation {params.elevation_deg:g} deg (Eq. 6 divides by "
-                             f"cos(beta) = {np.cos(np.deg2rad(params.elevation_deg)):.2f})")
-            else:
-                row["blade_length_m"] = float(rotor.blade_length_from_bandwidth_m(
-                    bandwidth, rotation_rate_hz=rate, wavelength_m=wavelength_m, elevation_deg=params.elevation_deg))
-
-    beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power) if found is None else None
-    if beat is not None and beat.strength >= MIN_PERIODICITY and beat.repeats >= 2:
-        row["wingbeat_period_s"] = beat.period_s
-        row["wingbeat_freq_hz"] = 1.0 / beat.period_s
-    elif found is None:
-        slowest = max(MIN_WINGBEAT_HZ, 2.0 / dwell_s)
-        notes.append(f"no wingbeat between {slowest:.2g} and {MAX_WINGBEAT_HZ:g} Hz (a dwell of {dwell_s:.3g} s "
-                     f"holds two wingbeats only above {2.0 / dwell_s:.2g} Hz)")
+            edges = _blade_length(demodulated, rate_hz=rate, prf_hz=prf_hz, wavelength_m=wavelength_m,
+                                  noise_power=noise_power, params=params, row=row, notes=notes)
+    else:  # blade flashes exclude a bird
+        _wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s, row=row, notes=notes)
     row["aliased"] = bool(aliased)
     window, hop = display_window_s(row, params)
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
     row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
     return TargetAnalysis(row=row, spectrum=plain, spectrogram=shown, band=band, paper_extent_hz=extent,
-                          flash_edges_hz=None if edges is None or edges.low_hz is None else (edges.low_hz, edges.high_hz),
-                          body_doppler_hz=track, notes=notes)
+                          flash_edges_hz=edges, body_doppler_hz=track, notes=notes)
