@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench-sim batch clean
+.PHONY: demo install test test-slow samples bench-sim batch paper clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -43,6 +43,10 @@ data_samples/clutter_only.h5: configs/samples/clutter_only.yaml $(MDPIPE)
 BENCH_DIR ?= /tmp
 bench-sim: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_simulate.py --workdir $(BENCH_DIR)
+
+# The paper's Tables IV and V from simulations of every Table I and II configuration (~30 s).
+paper: $(MDPIPE)
+	$(MDPIPE) paper --out reports
 
 # Every capture under IN, processed in parallel (make -j4 batch IN=captures OUT=results). A capture is
 # processed again only when it is newer than its table; one that fails leaves OUT/<stem>.error.txt and
