@@ -71,6 +71,8 @@ def spectrogram_figure(result, path):
         if analysis.flash_edges_hz is not None:
             for edge in analysis.flash_edges_hz:
                 ax.axhline(edge, color="w", ls="--", lw=0.8)
+        if row["rotation_rate_hz"] is not None:  # eight turns: the flashes stay readable
+            ax.set_xlim(spec.t_s[0], min(spec.t_s[-1], spec.t_s[0] + 8 / row["rotation_rate_hz"]))
         ax.set_xlabel("time (s)")
         ax.set_ylabel("Doppler (Hz)")
         _velocity_axis(ax, row["wavelength_m"], which="y")
