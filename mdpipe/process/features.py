@@ -19,10 +19,10 @@ BODY_LINE_DB = 6.0           # a body line stands this far above the next line o
 BODY_FRAME_S = 0.032
 MIN_REV_PER_S, MAX_REV_PER_S = 10.0, 500.0
 MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
+MIN_GAMMA = 20.0             # tip Doppler / f_rot: Table I config 4 (26.7) is within 1 %, 16.9 was 12 % long
 MIN_PERIODICITY = 0.2        # wingbeat autocorrelation prominence needed
 MIN_ROTOR_PERIODICITY = 0.6  # a rotor's echo repeats almost exactly (measured 0.93-0.95; a gull's best: 0.40)
-BROAD_BAND_SHARE = 0.1       # a band over 10 % of the half-span is cut at a share of its width ...
-HIGHPASS_SHARE = 0.25        # ... this share; narrower (or unseen) bands use a first difference
+HIGHPASS_SHARE = 0.25        # body removal for unaliased echoes: cut below this share of the band's half-width
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
 
 
@@ -79,9 +79,8 @@ def difference(signal):
     """First difference ``x[m] - x[m-1]``: a high-pass of response ``|2 sin(pi f / PRF)|``.
 
     After demodulation the body sits near 0 Hz, with whatever slow wander the track left; the
-    difference suppresses it by ``(2 pi f_wander / PRF)^2`` in power while a flash that is broadband
-    against the PRF passes. Used when the micro-Doppler band is narrow or invisible in the dwell
-    spectrum (weak, aliased flashes; birds), where no cutoff can be read from the band;
+    difference suppresses it by ``(2 pi f_wander / PRF)^2`` in power while an aliased flash, broadband
+    against the PRF, passes; no cutoff has to be read from a band that aliasing has hidden.
     :func:`mdpipe.process.spectral.flash_edges` undoes the response.
     """
     return np.diff(signal, prepend=signal[:1])
@@ -156,15 +155,21 @@ def _doppler_band(s, demodulated, *, prf_hz, wavelength_m, noise_power, params, 
 def _rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, notes):
     """Rotation rate (rev/s) from the blade flashes, or None with the reason in ``notes``.
 
-    Broad, unaliased bands (well-sampled flashes): the body-free echo repeats every 1/(N f_rot)
-    for even and odd N. Narrow, unseen or aliased bands (short, often stroboscopic flashes): flash
-    timing on the first difference of the echo.
+    A flash is about as long as the inverse of its Doppler width, so flashes are shorter than a
+    chirp interval exactly when the micro-Doppler aliases. Unaliased (well-sampled flashes): the
+    body-free echo repeats every 1/(N f_rot) for even and odd N. Aliased (stroboscopic flashes):
+    flash timing on the first difference of the echo.
     """
     max_period = 1.0 / (rotor.flashes_per_revolution(n_blades) * MIN_REV_PER_S)
-    if aliased or not half_width_hz >= BROAD_BAND_SHARE * prf_hz / 2:
+    if aliased:
         found = flash_period(difference(demodulated), prf_hz=prf_hz,
                              min_period_s=1.0 / (rotor.flashes_per_revolution(n_blades) * MAX_REV_PER_S),
                              max_period_s=max_period, noise_power=2 * noise_power)  # a difference doubles noise
+        if found is not None and found.ambiguous:
+            notes.append(f"rotation not estimable: the flash times fit {found.period_s * 1e3:.3g} ms and, by their "
+                         f"pairs, {found.period_s * 1e3 / found.ambiguous:.3g} ms (flashes shorter than a chirp are "
+                         f"sampled stroboscopically; a longer dwell or a higher PRF tells them apart)")
+            return None
         rate = None if found is None else rotor.rotation_rate_from_flash_period_hz(found.period_s, n_blades=n_blades)
     else:
         micro = highpass(demodulated, prf_hz=prf_hz, cutoff_hz=HIGHPASS_SHARE * half_width_hz)
@@ -182,7 +187,12 @@ def _rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_bla
 
 
 def _blade_length(demodulated, *, rate_hz, prf_hz, wavelength_m, noise_power, params, row, notes):
-    """Tip Doppler from the flash edges, and r by inverting Eq. 6. Returns the edges (or None)."""
+    """Tip Doppler from the flash edges, and r by inverting Eq. 6. Returns the edges (or None).
+
+    The edges are those of a flash's rectangular spectrum only when the flash is short against the
+    window, i.e. when the tips span many rotation harmonics (``Gamma = f_tip / f_rot``); below
+    ``MIN_GAMMA`` the flash fills the window and r is not reported.
+    """
     edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, window_s=0.25 / row["chopping_freq_hz"],
                                  noise_power=noise_power)
     if edges.low_hz is None:
@@ -191,7 +201,11 @@ def _blade_length(demodulated, *, rate_hz, prf_hz, wavelength_m, noise_power, pa
     bandwidth = edges.high_hz - edges.low_hz
     row["doppler_bw_spectrogram_hz"] = bandwidth
     row["tip_doppler_hz"] = bandwidth / 2
-    if abs(params.elevation_deg) > MAX_ELEVATION_DEG:
+    gamma = bandwidth / 2 / rate_hz
+    if gamma < MIN_GAMMA:
+        notes.append(f"blade length not estimable: the tips span {gamma:.1f} rotation harmonics (< {MIN_GAMMA:g}); "
+                     "a flash that long fills the analysis window and blurs its Doppler edges")
+    elif abs(params.elevation_deg) > MAX_ELEVATION_DEG:
         notes.append(f"blade length not estimable: elevation {params.elevation_deg:g} deg (Eq. 6 divides by "
                      f"cos(beta) = {np.cos(np.deg2rad(params.elevation_deg)):.2f})")
     else:

@@ -25,6 +25,7 @@ FALSE_EVENTS = 0.1          # noise events expected over a whole capture
 PAIR_WINDOW_CHIRPS = 1.5    # flash times are known to +-1 chirp
 PAIR_SIGMAS = 5.0           # a sub-period needs this many Poisson sigmas of excess pairs
 PAIR_SHARE = 0.25           # ... and this share of the excess found at T*
+FOLD_SHARE = 0.7            # the folded phase histogram shifted by T*/k keeps this share of its energy
 MAX_DIVISOR = 6
 MIN_EVENTS = 6
 COVERAGE_PARTS = 4          # events must fall in every quarter of the dwell
@@ -32,13 +33,18 @@ COVERAGE_PARTS = 4          # events must fall in every quarter of the dwell
 
 @dataclass(frozen=True)
 class FlashPeriod:
-    """Flash period with its evidence: events found, repeats fitted, and the pair excess in sigmas."""
+    """Flash period with its evidence: events found, repeats fitted, the pair excess in sigmas.
+
+    ``ambiguous`` names a divisor k whose T*/k the event pairs support but the folded phases do not;
+    ``period_s`` is then T* and should not be reported as a measurement.
+    """
 
     period_s: float
     n_events: int
     repeats: int
     significance: float
     strength: float
+    ambiguous: int = 0
 
 
 def flash_events(power, *, noise_power):
@@ -80,14 +86,29 @@ def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s, noise_powe
     excess_longest, sigmas_longest = _pair_excess(times, longest, n)
     if sigmas_longest < PAIR_SIGMAS:
         return None
-    period, sigmas = longest, sigmas_longest
+    period, sigmas, ambiguous = longest, sigmas_longest, 0
     for divisor in range(MAX_DIVISOR, 1, -1):
         candidate = longest / divisor
         if candidate < min_period_s * prf_hz:
             continue
         tests = [_pair_excess(times, j * candidate, n) for j in range(1, divisor)]
-        if all(sig >= PAIR_SIGMAS and excess >= PAIR_SHARE * excess_longest for excess, sig in tests):
-            period, sigmas = candidate, min(sig for _, sig in tests)
+        if not all(sig >= PAIR_SIGMAS and excess >= PAIR_SHARE * excess_longest for excess, sig in tests):
+            continue
+        if _fold_share(times, longest, divisor) >= FOLD_SHARE:
+            period, sigmas, ambiguous = candidate, min(sig for _, sig in tests), 0
             break
+        ambiguous = ambiguous or divisor
     return FlashPeriod(period_s=period / prf_hz, n_events=len(times), repeats=found.repeats,
-                       significance=float(sigmas), strength=found.strength)
+                       significance=float(sigmas), strength=found.strength, ambiguous=ambiguous)
+
+
+def _fold_share(times, period, divisor):
+    """Correlation of the phase histogram of ``times`` modulo ``period`` with itself shifted by period / divisor.
+
+    One bin per chirp, smoothed over +-1 chirp (the flash times' jitter); 1 for a histogram that
+    repeats with period / divisor.
+    """
+    bins = max(divisor, int(round(period)))
+    histogram = np.bincount(np.floor((times % period) / period * bins).astype(int) % bins, minlength=bins)
+    histogram = uniform_filter1d(histogram.astype(float), 3, mode="wrap")
+    return float(np.dot(histogram, np.roll(histogram, int(round(bins / divisor)))) / np.dot(histogram, histogram))

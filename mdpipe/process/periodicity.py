@@ -1,12 +1,13 @@
 """Period of a repeating signal from its autocorrelation, refined over many repeats.
 
 A rotor's echo repeats exactly every 1/(N f_rot) (the blades are interchangeable), whatever the
-body Doppler and whether or not the micro-Doppler aliases: sampling keeps a period longer than the
-chirp interval. The autocorrelation ``|r(tau)| / r(0)`` then peaks at every multiple of the
-period; the fundamental is the shortest lag whose peak stands within 80 % of the best one
-(multiples score as high; the rule keeps them from winning). The period is refined by locating
-the peaks near k T for k = 1..K (a parabola through each) and fitting ``tau_k = k T``: the lag step
-1/PRF is divided by ~K.
+body Doppler. The autocorrelation ``|r(tau)| / r(0)`` then peaks at every multiple of the period;
+the fundamental is the shortest lag whose peak stands within 80 % of the best one (multiples score
+as high; the rule keeps them from winning) and that repeats: a peak at 2T (and 3T where the record
+allows) at least half as prominent. The repeat test rejects lags that are only a fixed offset
+between similar parts of the echo, such as two rotors of one drone. The period is refined by
+locating the peaks near k T for k = 1..K (a parabola through each) and fitting ``tau_k = k T``:
+the lag step is divided by ~K.
 """
 
 from dataclasses import dataclass
@@ -15,6 +16,7 @@ import numpy as np
 from scipy.ndimage import minimum_filter1d
 
 FUNDAMENTAL_SHARE = 0.8
+REPEAT_SHARE = 0.5
 MAX_REPEATS = 64
 
 
@@ -45,6 +47,18 @@ def _parabolic_peak(r, index):
     return index + (0.5 * (left - right) / curvature if curvature < 0 else 0.0)
 
 
+def _repeats(prominence, lag):
+    """The peak at ``lag`` recurs at 2 lag (and 3 lag where the record allows) with half its prominence."""
+    limit = len(prominence) // 2
+    for k in (2, 3):
+        if k * lag >= limit:
+            return k > 2
+        half = max(2, int(0.02 * lag))  # the coarse lag is good to a sample: an offset peak nearby must not count
+        if prominence[k * lag - half:k * lag + half + 1].max() < REPEAT_SHARE * prominence[lag]:
+            return False
+    return True
+
+
 def find_period(signal, *, sample_rate_hz, min_period_s, max_period_s):
     """Strongest repeating period of ``signal`` between ``min_period_s`` and ``max_period_s``.
 
@@ -72,7 +86,9 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     if len(peaks) == 0:
         return None
     heights = prominence[peaks]
-    first = peaks[np.flatnonzero(heights >= FUNDAMENTAL_SHARE * heights.max())[0]]
+    first = next((p for p in peaks[heights >= FUNDAMENTAL_SHARE * heights.max()] if _repeats(prominence, p)), None)
+    if first is None:
+        return None
     coarse = _parabolic_peak(r, first)
     repeats = min(MAX_REPEATS, int((len(r) // 2) / coarse))
     lags, ks = [], []
