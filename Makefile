@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench-sim batch paper clean
+.PHONY: demo install test test-slow samples bench bench-sim batch paper clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -38,6 +38,10 @@ data_samples/gull_flyby.h5: configs/samples/gull_flyby.yaml $(MDPIPE)
 	$(MDPIPE) simulate --config $< -o $@
 data_samples/clutter_only.h5: configs/samples/clutter_only.yaml $(MDPIPE)
 	$(MDPIPE) simulate --config $< -o $@
+
+# Speed against error: each choice swept from the defaults, with the SNR breakdown (~1 min).
+bench: $(MDPIPE)
+	$(BIN)/python benchmarks/bench_tradeoffs.py --out reports
 
 # Full-size simulation benchmark (writes ~1.3 GB under BENCH_DIR, then removes it).
 BENCH_DIR ?= /tmp

@@ -103,7 +103,7 @@ def frame_signal(data):
     return time.perf_counter() - start, x.astype(np.float64), plans[0].model
 
 
-def frame_table(repeats):
+def frame_table(repeats, *, quiet=False):
     variants = [
         ("exact: every sample evaluated (reference)", {"in_chirp_motion": "exact"}, None),
         ("auto (default): Chebyshev nodes + migration", {}, None),
@@ -127,6 +127,8 @@ def frame_table(repeats):
             reference = x
         error = np.sqrt(np.mean((x - reference) ** 2) / np.mean(reference ** 2))
         rows.append((label, statistics.median(times) * 1e3, error, model))
+    if quiet:
+        return [{"model": r[0], "time_ms": r[1], "rel_rms_error": r[2]} for r in rows]
     print(f"\n## One FIMI rotor frame: 1024 chirps x 128 samples, 4 rotors x 2 blades, 76 GHz "
           f"(median of {repeats})")
     print("| model | time (ms) | nodes/chirp | rel. RMS error vs exact | bound |")

@@ -175,7 +175,15 @@ class ProcessParams:
     range_window, zero_pad : str, int
         Range-FFT window (``hann``, ``hamming``, ``blackman``, ``boxcar``) and zero-padding factor.
     stft_window_s, stft_hop_s : float or None
-        Spectrogram window and hop; None chooses them from the physics of the target.
+        Spectrogram window and hop of the figure; None chooses them from the physics of the target.
+    edge_window_periods, edge_hop_fraction : float
+        Spectrogram that measures the flash edges: window in chopping periods (a quarter holds one
+        flash whole), hop as a fraction of the window.
+    dtype : str
+        ``float32`` or ``float64`` for the range transform of pass 2.
+    range_bins : str
+        ``in-use`` evaluates the range DFT only at the bins a target occupies (a matrix product);
+        ``all`` takes the full FFT and picks them (for comparison).
     chunk_chirps : int
         Chirps read per chunk.
     """
@@ -192,6 +200,10 @@ class ProcessParams:
     zero_pad: int = 1
     stft_window_s: Optional[float] = None
     stft_hop_s: Optional[float] = None
+    edge_window_periods: float = 0.25
+    edge_hop_fraction: float = 0.125
+    dtype: str = "float32"
+    range_bins: str = "in-use"
     chunk_chirps: int = 256
 
     def __post_init__(self):
@@ -210,6 +222,11 @@ class ProcessParams:
             raise ParameterError(f"range_window={self.range_window!r} must be one of {', '.join(RANGE_WINDOWS)}")
         if int(self.zero_pad) != self.zero_pad or not 1 <= self.zero_pad <= 16:
             raise ParameterError(f"zero_pad={self.zero_pad!r} must be an integer from 1 to 16")
+        require_positive(edge_window_periods=self.edge_window_periods, edge_hop_fraction=self.edge_hop_fraction)
+        if self.dtype not in ("float32", "float64"):
+            raise ParameterError(f"dtype={self.dtype!r} must be float32 or float64")
+        if self.range_bins not in ("in-use", "all"):
+            raise ParameterError(f"range_bins={self.range_bins!r} must be in-use or all")
         for name in ("stft_window_s", "stft_hop_s"):
             value = getattr(self, name)
             if value is not None:

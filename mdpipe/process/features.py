@@ -19,7 +19,7 @@ BODY_LINE_DB = 6.0           # a body line stands this far above the next line o
 BODY_FRAME_S = 0.032
 MIN_REV_PER_S, MAX_REV_PER_S = 10.0, 500.0
 MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
-MIN_GAMMA = 20.0             # tip Doppler / f_rot: Table I config 4 (26.7) is within 1 %, 16.9 was 12 % long
+FLASHES_PER_WINDOW = 1.5     # flash main lobes the edge window must hold: Gamma >= 24 for N = 2 (config 4: 26.7)
 MIN_PERIODICITY = 0.2        # wingbeat autocorrelation prominence needed
 MIN_ROTOR_PERIODICITY = 0.6  # a rotor's echo repeats almost exactly (measured 0.93-0.95; a gull's best: 0.40)
 HIGHPASS_SHARE = 0.25        # body removal for unaliased echoes: cut below this share of the band's half-width
@@ -189,12 +189,13 @@ def _rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_bla
 def _blade_length(demodulated, *, rate_hz, prf_hz, wavelength_m, noise_power, params, row, notes):
     """Tip Doppler from the flash edges, and r by inverting Eq. 6. Returns the edges (or None).
 
-    The edges are those of a flash's rectangular spectrum only when the flash is short against the
-    window, i.e. when the tips span many rotation harmonics (``Gamma = f_tip / f_rot``); below
-    ``MIN_GAMMA`` the flash fills the window and r is not reported.
+    The edges are those of a flash's rectangular spectrum only when the window holds the whole
+    flash. A broadside blade's sinc lasts ``2 / f_tip`` (main lobe); the window is
+    ``w / (N f_rot)``; their ratio is ``w Gamma / (2 N)`` with ``Gamma = f_tip / f_rot``. Below
+    ``FLASHES_PER_WINDOW`` main lobes r is not reported.
     """
-    edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, window_s=0.25 / row["chopping_freq_hz"],
-                                 noise_power=noise_power)
+    edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, window_s=params.edge_window_periods / row["chopping_freq_hz"],
+                                 noise_power=noise_power, hop_fraction=params.edge_hop_fraction)
     if edges.low_hz is None:
         notes.append("blade length not estimable: no flash frame with both Doppler edges inside the span")
         return None
@@ -202,9 +203,10 @@ def _blade_length(demodulated, *, rate_hz, prf_hz, wavelength_m, noise_power, pa
     row["doppler_bw_spectrogram_hz"] = bandwidth
     row["tip_doppler_hz"] = bandwidth / 2
     gamma = bandwidth / 2 / rate_hz
-    if gamma < MIN_GAMMA:
-        notes.append(f"blade length not estimable: the tips span {gamma:.1f} rotation harmonics (< {MIN_GAMMA:g}); "
-                     "a flash that long fills the analysis window and blurs its Doppler edges")
+    min_gamma = FLASHES_PER_WINDOW * 2 * params.n_blades / params.edge_window_periods
+    if gamma < min_gamma:
+        notes.append(f"blade length not estimable: the tips span {gamma:.1f} rotation harmonics (< {min_gamma:.0f}); "
+                     "a flash that long does not fit the analysis window and its Doppler edges blur")
     elif abs(params.elevation_deg) > MAX_ELEVATION_DEG:
         notes.append(f"blade length not estimable: elevation {params.elevation_deg:g} deg (Eq. 6 divides by "
                      f"cos(beta) = {np.cos(np.deg2rad(params.elevation_deg)):.2f})")

@@ -113,31 +113,42 @@ def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_r
                           clipped_fraction=clipped / (n * n_ch * params.n_samples))
 
 
-def slow_time(reader, bins, weights, *, window="hann", zero_pad=1, chunk_chirps=256):
+def slow_time(reader, bins, weights, *, window="hann", zero_pad=1, chunk_chirps=256, dtype="float32",
+              all_bins=False):
     """Pass 2: complex slow-time signals of ``bins`` (padded grid), channels combined with ``weights``.
 
     Parameters
     ----------
-    bins : array_like (K,)
+    bins : array_like (K,) of int
     weights : ndarray (K, C) complex
         Signal of bin k is ``sum_c weights[k, c] * X[c, k]``.
+    dtype : {"float32", "float64"}
+        Precision of the transform.
+    all_bins : bool
+        Take the full FFT and pick the bins, instead of the DFT at those bins only.
 
     Returns
     -------
-    ndarray, complex64, shape (n_chirps, K)
+    ndarray, complex, shape (n_chirps, K)
     """
     params = reader.params
+    real = np.dtype(dtype)
+    complex_ = np.result_type(real, np.complex64)
     n = np.arange(params.n_samples)
-    bins = np.asarray(bins, dtype=np.float64)
+    bins = np.asarray(bins)
+    win = range_window(window, params.n_samples).astype(real)
     # conj(sum_n w x e^{-j 2 pi k n / Nfft}) = sum_n w x e^{+j 2 pi k n / Nfft} for real x
-    dft = range_window(window, params.n_samples)[:, None] * np.exp(
-        2j * np.pi * np.outer(n, bins) / (zero_pad * params.n_samples))
-    dft_re, dft_im = dft.real.astype(np.float32), dft.imag.astype(np.float32)  # real products on real samples
-    out = np.empty((reader.n_chirps, len(bins)), dtype=np.complex64)
-    w = np.asarray(weights, dtype=np.complex64)
+    dft = win[:, None] * np.exp(2j * np.pi * np.outer(n, bins) / (zero_pad * params.n_samples))
+    dft_re, dft_im = dft.real.astype(real), dft.imag.astype(real)  # real products on real samples
+    out = np.empty((reader.n_chirps, len(bins)), dtype=complex_)
+    w = np.asarray(weights, dtype=complex_)
     for first, block in reader.iter_chunks(chunk_chirps=chunk_chirps):
-        x = np.empty(block.shape[:2] + (len(bins),), dtype=np.complex64)  # (M, C, K)
-        x.real = block @ dft_re
-        x.imag = block @ dft_im
+        block = block.astype(real, copy=False)
+        if all_bins:
+            x = np.conj(np.fft.rfft(block * win, n=zero_pad * params.n_samples, axis=-1))[..., bins]
+        else:
+            x = np.empty(block.shape[:2] + (len(bins),), dtype=complex_)  # (M, C, K)
+            x.real = block @ dft_re
+            x.imag = block @ dft_im
         out[first:first + block.shape[0]] = np.einsum("mck,kc->mk", x, w)
     return out

@@ -88,8 +88,8 @@ class FlashEdges:
         return self.n_filled >= 3 and self.n_filled > self.n_frames / 2
 
 
-def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False):
-    """Doppler edges of the blade flashes, from a spectrogram of window ``window_s`` (hop an eighth).
+def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop_fraction=0.125):
+    """Doppler edges of the blade flashes, from a spectrogram of window ``window_s`` and hop ``hop_fraction`` of it.
 
     For the edges the window should be a quarter chopping period (it holds one flash whole); to see
     whether flashes fill the span, any window a few chirps long does.
@@ -104,7 +104,7 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False):
     ``differenced``: ``signal`` is a first difference; its response ``|2 sin(pi f / PRF)|^2`` is
     divided out, and the two bins around 0 Hz (where it vanishes) are left out.
     """
-    spec = spectrogram(signal, prf_hz=prf_hz, window_s=window_s, hop_s=window_s / 8)
+    spec = spectrogram(signal, prf_hz=prf_hz, window_s=window_s, hop_s=window_s * hop_fraction)
     power, f = spec.power, spec.f_hz
     window = np.hanning(int(round(spec.window_s * prf_hz)) + 1)[:-1]
     noise_level = noise_power * np.sum(window ** 2) / np.sum(window) ** 2
