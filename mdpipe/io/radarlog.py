@@ -174,7 +174,7 @@ class RadarlogReader:
         if n_chirps < 1:
             raise CaptureFormatError(f"{path}: the capture holds no chirps")
         if frame_counter == "auto":
-            first = self._raw(0, min(n_chirps, DETECTION_CHIRPS))[:, 0, 0]
+            first = self._raw(0, min(n_chirps, DETECTION_CHIRPS), [0])[0, :, 0]
             frame_counter = _is_frame_counter(first)
         self._skip = 1 if frame_counter else 0
         values["n_samples"] -= self._skip
@@ -196,16 +196,38 @@ class RadarlogReader:
             self.truth = {"scene_yaml": str(attrs.get("scene_yaml", "")),
                           "expected": json.loads(attrs.get("expected_json", "{}"))}
 
-    def _raw(self, start, stop, channels=None):
-        channels = range(self._n_channels) if channels is None else channels
+    def _raw(self, start, stop, channels=None, out=None):
+        """Stored samples of chirps ``start:stop``, channel-major (C, M, N_stored), read into ``out`` if given."""
+        channels = list(range(self._n_channels) if channels is None else channels)
         try:
             if self._datasets[0].ndim == 3:
-                return self._datasets[0][start:stop][:, list(channels), :]
-            return np.stack([self._datasets[c][start:stop] for c in channels], axis=1)
+                block = self._datasets[0][start:stop][:, channels, :].transpose(1, 0, 2)
+                if out is None:
+                    return np.ascontiguousarray(block)
+                out[...] = block
+                return out
+            if out is None:
+                out = np.empty((len(channels), stop - start, self._datasets[0].shape[1]), self._datasets[0].dtype)
+            for row, channel in zip(out, channels):
+                self._datasets[channel].read_direct(row, np.s_[start:stop])
+            return out
         except OSError as exc:
             raise CaptureFormatError(
                 f"{self.path}: chirps {start}..{stop - 1} cannot be read ({str(exc).split('(')[0].strip()}); "
                 "the file is corrupt") from None
+
+    def read_counts(self, start, stop, *, channels=None, out=None):
+        """Chirps ``start:stop`` as stored (ADC counts, or floats), shape (channels, chirps, samples).
+
+        The fast path: no scaling (multiply by ``params.full_scale_v_per_lsb`` for volts) and no copy
+        beyond the read; ``out`` (C, M, N + frame-counter column) is reused when given. NaN or Inf in
+        float samples is an error.
+        """
+        block = self._raw(start, stop, channels, out)[..., self._skip:]
+        if block.dtype.kind == "f" and not np.all(np.isfinite(block)):
+            raise CaptureFormatError(
+                f"{self.path}: chirps {start}..{stop - 1} hold NaN or Inf samples; the capture is corrupt")
+        return block
 
     @property
     def clip_level_v(self):
@@ -216,11 +238,7 @@ class RadarlogReader:
 
     def read_chirps(self, start, stop, *, channels=None):
         """Chirps ``start:stop`` as float32 volts, shape (chirps, channels, samples)."""
-        block = self._raw(start, stop, channels)[..., self._skip:]
-        if not np.all(np.isfinite(block)):
-            raise CaptureFormatError(
-                f"{self.path}: chirps {start}..{stop - 1} hold NaN or Inf samples; the capture is corrupt")
-        out = block.astype(np.float32)
+        out = self.read_counts(start, stop, channels=channels).transpose(1, 0, 2).astype(np.float32)
         out *= np.float32(self.params.full_scale_v_per_lsb)
         return out
 

@@ -1,27 +1,40 @@
-"""Range processing, streamed over chunks of chirps.
+"""Range processing, streamed over chunks of chirps, only at the range bins that are needed.
 
-Pass 1 (:func:`gate_statistics`): the windowed range FFT of every chirp of every channel, reduced on
-the fly to what selection needs: the static (slow-time mean) and moving (MTI) power of every bin,
-and, for the bins of the gate, each channel's mean, the channel covariance of the moving part and
-the moving power per chunk. Memory does not grow with the capture's length.
+Pass 1 (:func:`gate_statistics`) reads a sample of every chunk (the first ``probe_chirps`` of each
+``chunk_chirps``: an eighth by default; all of a capture whose sample would hold fewer than
+``MIN_PROBED_CHIRPS``) and evaluates the windowed range DFT at the bins from 0 to
+the end of the gate only, as one matrix product. It keeps what selection needs: the static
+(slow-time mean) and moving (MTI) power of those bins, each gate bin's channel mean and channel
+covariance of its moving part, and its moving power in every chunk (for tracking). Statistics of
+an eighth of the chirps are statistics all the same; memory does not grow with the capture.
 
-Pass 2 (:func:`slow_time`): the same windowed DFT evaluated only at the bins in use, as one matrix
-product per chunk, combined across channels with given weights.
+Pass 2 (:func:`slow_time`) reads every chirp and evaluates the DFT only at the few bins the
+targets occupy, combining the channels with given weights.
 
-Slow-time signals follow the paper's Doppler sign (approaching positive): the range FFT of a real
-IF carries ``exp(+j 4 pi R / lambda)`` in its positive-frequency bins, so they are conjugated.
-Arrays are (chirp, channel, sample) in, (chirp, bin) out.
+Both work on the stored counts: one int16 -> float conversion, one product with a (N, 2K) real
+matrix (real and imaginary parts), the full scale applied to the small result; chunks go to two
+worker threads, so one chunk is read while the other is transformed (numpy releases the GIL).
+Slow-time signals follow the paper's Doppler sign (approaching positive): the range FFT of a real IF
+carries ``exp(+j 4 pi R / lambda)`` in its positive-frequency bins, so the DFT is conjugated.
+Arrays are (channel, chirp, sample) in, (chirp, bin) out.
 """
 
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.signal import get_window
 
+PROBE_CHIRPS = 32
+MIN_PROBED_CHIRPS = 2048
+WORKERS = min(2, os.cpu_count() or 1)
+INT16_FULL_SCALE = 32767
+
 
 def range_window(name, n_samples):
     """Symmetric window of ``n_samples`` for the range FFT."""
-    return get_window(name, n_samples, fftbins=False).astype(np.float32)
+    return get_window(name, n_samples, fftbins=False)
 
 
 def bin_range_m(bins, params, zero_pad):
@@ -29,20 +42,36 @@ def bin_range_m(bins, params, zero_pad):
     return np.asarray(bins, dtype=np.float64) * params.range_bin_m / zero_pad
 
 
+def dft_matrix(n_samples, bins, *, window, zero_pad, dtype):
+    """Real (N, 2K) matrix: ``counts @ m`` gives the conjugated windowed DFT at ``bins``, real parts then imaginary."""
+    n = np.arange(n_samples)
+    dft = range_window(window, n_samples)[:, None] * np.exp(
+        2j * np.pi * np.outer(n, bins) / (zero_pad * n_samples))
+    return np.concatenate([dft.real, dft.imag], axis=1).astype(dtype)
+
+
+def transform(counts, matrix, dtype):
+    """DFT of counts (C, M, N) at the matrix's K bins: complex (C, M, K), in counts."""
+    c, m, n = counts.shape
+    product = counts.reshape(c * m, n).astype(dtype, copy=False) @ matrix
+    k = matrix.shape[1] // 2
+    return (product[:, :k] + 1j * product[:, k:]).reshape(c, m, k)
+
+
 @dataclass(frozen=True)
 class GateStatistics:
-    """Pass-1 summary of a capture.
+    """Pass-1 summary of a capture (powers per chirp and channel, in V^2).
 
     Attributes
     ----------
     range_m : ndarray (n_bins,)
-        Range of every positive-frequency bin (padded grid).
+        Range of the bins from 0 to the gate's end (padded grid).
     static_power, moving_power : ndarray (n_bins,)
-        Per chirp and channel: power of the slow-time mean, and mean power about it (MTI).
+        Power of the slow-time mean, and mean power about it (MTI).
     gate_bins : ndarray (B,) of int
         Bins inside the range gate.
     mean : ndarray (B, C) complex
-        Slow-time mean of each gate bin and channel.
+        Slow-time mean of each gate bin and channel (V).
     covariance : ndarray (B, C, C) complex
         Channel covariance of the moving part of each gate bin.
     chunk_power : ndarray (n_chunks, B)
@@ -50,8 +79,9 @@ class GateStatistics:
     chunk_t_s : ndarray (n_chunks,)
         Centre time of each chunk.
     n_chirps : int
+        Chirps in the capture.
     clipped_fraction : float
-        Share of the samples at the int16 full scale (0 for float samples).
+        Share of the sampled counts at the int16 full scale (0 for float samples).
     """
 
     range_m: np.ndarray
@@ -75,42 +105,45 @@ class GateStatistics:
         return np.real(np.trace(self.covariance, axis1=1, axis2=2))
 
 
-def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_range_m=np.inf, chunk_chirps=256):
+def _probe(reader, first, rows, matrix, gate, clip):
+    counts = reader.read_counts(first, first + rows)
+    x = transform(counts, matrix, np.float32)  # (C, M, bins)
+    g = x[:, :, gate].transpose(2, 0, 1)  # (B, C, M)
+    local = g - g.mean(axis=-1, keepdims=True)
+    clipped = 0 if clip is None else int(np.count_nonzero(counts >= clip) + np.count_nonzero(counts <= -clip - 1))
+    return (x.sum(axis=1).T, np.einsum("cmb,cmb->b", x, x.conj()).real, g @ g.conj().transpose(0, 2, 1),
+            np.sum(np.abs(local) ** 2, axis=(1, 2)) / rows, clipped, counts.size)
+
+
+def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_range_m=np.inf, chunk_chirps=256,
+                    probe_chirps=PROBE_CHIRPS):
     """Pass 1 over ``reader`` (a :class:`mdpipe.io.RadarlogReader`); see :class:`GateStatistics`."""
     params = reader.params
-    n_fft = zero_pad * params.n_samples
-    win = range_window(window, params.n_samples)
-    ranges = bin_range_m(np.arange(n_fft // 2 + 1), params, zero_pad)
-    gate = np.flatnonzero((ranges >= min_range_m) & (ranges <= max_range_m) & (np.arange(len(ranges)) > 0))
+    ranges = bin_range_m(np.arange(zero_pad * params.n_samples // 2 + 1), params, zero_pad)
+    ranges = ranges[ranges <= max_range_m]
+    gate = np.flatnonzero((ranges >= min_range_m) & (np.arange(len(ranges)) > 0))
+    matrix = dft_matrix(params.n_samples, np.arange(len(ranges)), window=window, zero_pad=zero_pad, dtype=np.float32)
+    clip = INT16_FULL_SCALE if reader.layout.sample_dtype == "int16" else None
+    firsts = range(0, reader.n_chirps, chunk_chirps)
+    if reader.n_chirps * min(probe_chirps, chunk_chirps) / chunk_chirps < MIN_PROBED_CHIRPS:
+        probe_chirps = chunk_chirps
+    rows = [min(probe_chirps, chunk_chirps, reader.n_chirps - first) for first in firsts]
+    with ThreadPoolExecutor(WORKERS) as pool:
+        parts = list(pool.map(lambda job: _probe(reader, *job, matrix, gate, clip), zip(firsts, rows)))
+    scale = params.full_scale_v_per_lsb
+    n = sum(rows)
     n_ch = params.n_channels
-    total = np.zeros((len(ranges), n_ch), dtype=np.complex128)
-    power = np.zeros(len(ranges))
-    cross = np.zeros((len(gate), n_ch, n_ch), dtype=np.complex128)
-    chunk_power, chunk_t = [], []
-    clip_level = reader.clip_level_v
-    clipped = 0
-    for first, block in reader.iter_chunks(chunk_chirps=chunk_chirps):
-        if clip_level is not None:
-            clipped += int(np.count_nonzero(np.abs(block) >= np.float32(clip_level)))
-        spectrum = np.conj(np.fft.rfft(block * win, n=n_fft, axis=-1))  # (M, C, bins)
-        total += spectrum.sum(axis=0).T
-        power += np.einsum("mcb,mcb->b", spectrum, spectrum.conj()).real
-        g = spectrum[:, :, gate].transpose(2, 1, 0)  # (B, C, M)
-        cross += g @ g.conj().transpose(0, 2, 1)
-        local = g - g.mean(axis=-1, keepdims=True)
-        chunk_power.append(np.sum(np.abs(local) ** 2, axis=(1, 2)) / block.shape[0])
-        chunk_t.append((first + 0.5 * block.shape[0]) * params.chirp_period_s)
-    n = reader.n_chirps
-    mean = total / n
+    mean = sum(p[0] for p in parts) * (scale / n)
     static = np.sum(np.abs(mean) ** 2, axis=1) / n_ch
-    moving = power / (n * n_ch) - static
+    moving = sum(p[1] for p in parts) * (scale ** 2 / (n * n_ch)) - static
     gmean = mean[gate]
-    covariance = cross / n - gmean[:, :, None] * gmean[:, None, :].conj()
-    return GateStatistics(range_m=ranges, static_power=static, moving_power=np.maximum(moving, 0.0),
-                          gate_bins=gate, mean=gmean, covariance=covariance,
-                          chunk_power=np.array(chunk_power).reshape(-1, len(gate)),
-                          chunk_t_s=np.array(chunk_t), n_chirps=n,
-                          clipped_fraction=clipped / (n * n_ch * params.n_samples))
+    covariance = sum(p[2] for p in parts) * (scale ** 2 / n) - gmean[:, :, None] * gmean[:, None, :].conj()
+    chunk_t = np.array([(first + 0.5 * r) * params.chirp_period_s for first, r in zip(firsts, rows)])
+    return GateStatistics(range_m=ranges, static_power=static, moving_power=np.maximum(moving, 0.0), gate_bins=gate,
+                          mean=gmean, covariance=covariance,
+                          chunk_power=np.array([p[3] for p in parts]).reshape(-1, len(gate)) * scale ** 2,
+                          chunk_t_s=chunk_t, n_chirps=reader.n_chirps,
+                          clipped_fraction=sum(p[4] for p in parts) / sum(p[5] for p in parts))
 
 
 def slow_time(reader, bins, weights, *, window="hann", zero_pad=1, chunk_chirps=256, dtype="float32",
@@ -129,26 +162,24 @@ def slow_time(reader, bins, weights, *, window="hann", zero_pad=1, chunk_chirps=
 
     Returns
     -------
-    ndarray, complex, shape (n_chirps, K)
+    ndarray, complex, shape (n_chirps, K), V
     """
     params = reader.params
     real = np.dtype(dtype)
-    complex_ = np.result_type(real, np.complex64)
-    n = np.arange(params.n_samples)
     bins = np.asarray(bins)
+    matrix = dft_matrix(params.n_samples, bins, window=window, zero_pad=zero_pad, dtype=real)
     win = range_window(window, params.n_samples).astype(real)
-    # conj(sum_n w x e^{-j 2 pi k n / Nfft}) = sum_n w x e^{+j 2 pi k n / Nfft} for real x
-    dft = win[:, None] * np.exp(2j * np.pi * np.outer(n, bins) / (zero_pad * params.n_samples))
-    dft_re, dft_im = dft.real.astype(real), dft.imag.astype(real)  # real products on real samples
-    out = np.empty((reader.n_chirps, len(bins)), dtype=complex_)
-    w = np.asarray(weights, dtype=complex_)
-    for first, block in reader.iter_chunks(chunk_chirps=chunk_chirps):
-        block = block.astype(real, copy=False)
+    w = np.asarray(weights) * params.full_scale_v_per_lsb
+    out = np.empty((reader.n_chirps, len(bins)), dtype=np.result_type(real, np.complex64))
+
+    def chunk(first):
+        counts = reader.read_counts(first, min(first + chunk_chirps, reader.n_chirps))
         if all_bins:
-            x = np.conj(np.fft.rfft(block * win, n=zero_pad * params.n_samples, axis=-1))[..., bins]
+            x = np.conj(np.fft.rfft(counts.astype(real) * win, n=zero_pad * params.n_samples, axis=-1))[..., bins]
         else:
-            x = np.empty(block.shape[:2] + (len(bins),), dtype=complex_)  # (M, C, K)
-            x.real = block @ dft_re
-            x.imag = block @ dft_im
-        out[first:first + block.shape[0]] = np.einsum("mck,kc->mk", x, w)
+            x = transform(counts, matrix, real)
+        out[first:first + counts.shape[1]] = np.einsum("cmk,kc->mk", x, w)
+
+    with ThreadPoolExecutor(WORKERS) as pool:
+        list(pool.map(chunk, range(0, reader.n_chirps, chunk_chirps)))
     return out
