@@ -33,8 +33,7 @@ def _target_signals(reader, stats, detections, process):
     used = sorted({int(g) for path in paths for g in path})
     weights, gains = selection.channel_weights(stats.covariance[used])
     columns = ranging.slow_time(reader, stats.gate_bins[used], weights, window=process.range_window,
-                                zero_pad=process.zero_pad, chunk_chirps=process.chunk_chirps, dtype=process.dtype,
-                                all_bins=process.range_bins == "all")
+                                zero_pad=process.zero_pad, dtype=process.dtype, all_bins=process.range_bins == "all")
     column_of = {g: i for i, g in enumerate(used)}
     signals = []
     for path in paths:
