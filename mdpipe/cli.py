@@ -11,8 +11,6 @@ from mdpipe.errors import MdpipeError
 from mdpipe.io import open_capture
 from mdpipe.io.radarlog import ATTRIBUTES
 from mdpipe.params import RANGE_WINDOWS, ProcessParams
-from mdpipe.simulate.run import simulate_to_file
-from mdpipe.simulate.scene import load_scene_mapping, scene_from_mapping, scene_to_yaml
 
 PROGRESS_MIN_SAMPLES = 1 << 25
 
@@ -74,6 +72,9 @@ def main():
 @click.option("--snr-db", type=float, help="Override noise: per-sample SNR of the moving targets, dB.")
 def simulate(config_path, out_path, seed, chirps, channels, snr_db):
     """Simulate the scene in CONFIG and write a Radarlog capture with its expected answer."""
+    from mdpipe.simulate.run import simulate_to_file
+    from mdpipe.simulate.scene import load_scene_mapping, scene_from_mapping, scene_to_yaml
+
     data = load_scene_mapping(config_path)
     if isinstance(data, dict) and isinstance(data.get("radar"), dict):
         if chirps is not None:

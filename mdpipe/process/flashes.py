@@ -16,8 +16,7 @@ pairs of events than a random train would is the flash period.
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import uniform_filter1d
-
+from mdpipe.process.filters import moving_average
 from mdpipe.process.periodicity import find_period
 
 EVENT_SIGMAS = 6.0          # an event stands this many robust sigmas above the median power
@@ -77,7 +76,7 @@ def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s, noise_powe
     times = np.flatnonzero(events).astype(float)
     if len(times) < MIN_EVENTS or len(np.unique(times * COVERAGE_PARTS // len(events))) < COVERAGE_PARTS:
         return None  # a rotor flashes all through the dwell; a burst of glitches does not
-    train = uniform_filter1d(events.astype(float), 3)
+    train = moving_average(events.astype(float), 3)
     found = find_period(train, sample_rate_hz=prf_hz, min_period_s=min_period_s, max_period_s=max_period_s)
     if found is None:
         return None
@@ -110,5 +109,5 @@ def _fold_share(times, period, divisor):
     """
     bins = max(divisor, int(round(period)))
     histogram = np.bincount(np.floor((times % period) / period * bins).astype(int) % bins, minlength=bins)
-    histogram = uniform_filter1d(histogram.astype(float), 3, mode="wrap")
+    histogram = moving_average(histogram.astype(float), 3, mode="wrap")
     return float(np.dot(histogram, np.roll(histogram, int(round(bins / divisor)))) / np.dot(histogram, histogram))

@@ -13,7 +13,8 @@ the lag step is divided by ~K.
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import minimum_filter1d
+
+from mdpipe.process.filters import running_min
 
 FUNDAMENTAL_SHARE = 0.8
 REPEAT_SHARE = 0.5
@@ -79,7 +80,7 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     hi = min(int(max_period_s * sample_rate_hz), len(r) // 2)
     if hi <= lo + 2:
         return None
-    baseline = minimum_filter1d(r, size=2 * lo + 1, mode="nearest")
+    baseline = running_min(r, 2 * lo + 1)
     prominence = r - baseline
     seg = r[lo:hi]
     peaks = np.flatnonzero((seg[1:-1] > seg[:-2]) & (seg[1:-1] >= seg[2:])) + 1 + lo

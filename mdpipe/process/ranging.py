@@ -27,7 +27,6 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import get_window
 from threadpoolctl import threadpool_limits
 
 PROBE_CHIRPS = 32
@@ -38,9 +37,12 @@ WORKERS = min(2, os.cpu_count() or 1)
 INT16_FULL_SCALE = 32767
 
 
+RANGE_WINDOW_FUNCTIONS = {"hann": np.hanning, "hamming": np.hamming, "blackman": np.blackman, "boxcar": np.ones}
+
+
 def range_window(name, n_samples):
     """Symmetric window of ``n_samples`` for the range FFT."""
-    return get_window(name, n_samples, fftbins=False)
+    return RANGE_WINDOW_FUNCTIONS[name](n_samples)
 
 
 def bin_range_m(bins, params, zero_pad):

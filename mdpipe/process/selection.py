@@ -7,7 +7,8 @@ stronger than a drone does not win. The noise level is the median moving power o
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import median_filter
+
+from mdpipe.process.filters import running_median
 
 MIN_SEPARATION_BINS = 3  # Hann main lobe +-2 bins, plus the range-Doppler spread of fast blade tips
 SIDELOBE_DB = 40.0       # peaks this far below the strongest are taken for its range sidelobes
@@ -111,7 +112,7 @@ def track(stats, detection):
 
     follow(range(start, n_chunks), detection.gate_index)
     follow(range(start - 1, -1, -1), path[start])
-    return median_filter(path, size=min(5, n_chunks) | 1, mode="nearest")
+    return np.rint(running_median(path, min(5, n_chunks) | 1)).astype(int)
 
 
 def stitch(signals, path, chunk_chirps, *, overlap=16):

@@ -6,9 +6,9 @@ Frequencies are centred (``-PRF/2 .. PRF/2``), paper sign.
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import uniform_filter1d
 
 from mdpipe.process.doppler import spectrogram
+from mdpipe.process.filters import moving_average
 
 OCCUPIED_DB = 10.0        # micro-Doppler "present" this far above the noise level
 EDGE_FRACTION = 0.02      # within 2 % of the span's ends counts as touching them
@@ -42,7 +42,7 @@ def occupied_band(spectrum, noise_level, *, smooth_hz):
     """
     f, power = spectrum.f_hz, spectrum.power
     width = max(1, int(round(smooth_hz / spectrum.resolution_hz)))
-    envelope = uniform_filter1d(power, width, mode="wrap")
+    envelope = moving_average(power, width, mode="wrap")
     occupied = envelope > noise_level * 10 ** (OCCUPIED_DB / 10)
     if not occupied.any():
         return Band(np.nan, np.nan, 0.0, False, "no Doppler band above the noise")

@@ -8,9 +8,8 @@ is then found as for rotors (:mod:`mdpipe.process.periodicity`).
 """
 
 import numpy as np
-from scipy.ndimage import uniform_filter1d
-
 from mdpipe.process.doppler import spectrogram
+from mdpipe.process.filters import moving_average
 from mdpipe.process.periodicity import period_from_autocorrelation
 
 FRAME_S = 0.064
@@ -32,7 +31,7 @@ def pattern_autocorrelation(spec, *, detrend_frames, noise_level):
     if len(power) == 0:
         return np.zeros(spec.power.shape[1])
     rows = np.log(power + np.finfo(float).tiny)
-    rows = rows - uniform_filter1d(rows, size=max(1, detrend_frames), axis=1, mode="nearest")
+    rows = rows - moving_average(rows, max(1, detrend_frames), axis=1)
     n = rows.shape[1]
     spectra = np.fft.rfft(rows, n=2 * n, axis=1)
     r = np.fft.irfft(np.abs(spectra) ** 2, axis=1)[:, :n].sum(axis=0) / np.arange(n, 0, -1)

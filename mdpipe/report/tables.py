@@ -1,13 +1,12 @@
 """Feature tables: per-capture CSV, JSON lines, run provenance, and the folder summary. Writes are atomic."""
 
+import csv
 import json
 import math
 import os
 import tempfile
 from dataclasses import asdict
 from pathlib import Path
-
-import pandas as pd
 
 from mdpipe import __version__
 
@@ -48,9 +47,15 @@ def json_record(row):
 
 
 def write_features_csv(rows, path):
-    """One row per target."""
-    frame = pd.DataFrame([json_record(r) for r in rows])
-    atomic_write(path, lambda tmp: frame.to_csv(tmp, index=False))
+    """One row per target (stdlib csv: pandas would add 0.3 s of import to every capture)."""
+    records = [json_record(r) for r in rows]
+
+    def write(tmp):
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            writer = csv.DictWriter(fh, fieldnames=list(records[0]))
+            writer.writeheader()
+            writer.writerows(records)
+    atomic_write(path, write)
 
 
 def write_run_json(path, *, capture, params, layout, radar):
@@ -72,6 +77,8 @@ def summarize(folder):
     features : pandas.DataFrame
     errors : pandas.DataFrame with columns file, error
     """
+    import pandas as pd
+
     folder = Path(folder)
     tables = [pd.read_csv(p) for p in sorted(folder.rglob(f"*{FEATURES_SUFFIX}")) if p.name != "features.csv"]
     features = pd.concat(tables, ignore_index=True) if tables else pd.DataFrame(columns=list(JSON_KEYS))

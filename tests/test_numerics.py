@@ -1,0 +1,52 @@
+"""The numpy stand-ins on the processing path equal the scipy functions they replace (which stay oracles)."""
+
+import numpy as np
+import pytest
+from scipy import ndimage
+from scipy.signal import ShortTimeFFT
+from scipy.signal.windows import hann
+
+from mdpipe.process import doppler, filters
+
+
+@pytest.fixture
+def x():
+    return np.random.default_rng(7).normal(size=503)
+
+
+@pytest.mark.parametrize("size", [1, 2, 3, 8, 25])
+@pytest.mark.parametrize("mode", ["nearest", "wrap"])
+def test_moving_average_is_uniform_filter1d(x, size, mode):
+    np.testing.assert_allclose(filters.moving_average(x, size, mode=mode),
+                               ndimage.uniform_filter1d(x, size, mode=mode), atol=1e-12)
+
+
+def test_moving_average_along_an_axis(x):
+    rows = x[:500].reshape(5, 100)
+    np.testing.assert_allclose(filters.moving_average(rows, 9, axis=1),
+                               ndimage.uniform_filter1d(rows, 9, axis=1, mode="nearest"), atol=1e-12)
+
+
+@pytest.mark.parametrize("size", [1, 3, 5, 11])
+def test_running_min_and_median(x, size):
+    np.testing.assert_array_equal(filters.running_min(x, size), ndimage.minimum_filter1d(x, size, mode="nearest"))
+    np.testing.assert_array_equal(filters.running_median(x, size), ndimage.median_filter(x, size=size, mode="nearest"))
+
+
+@pytest.mark.parametrize("n_window, hop", [(64, 16), (24, 3), (33, 7), (128, 1)])
+def test_spectrogram_is_short_time_fft(n_window, hop):
+    prf = 15625.0
+    signal = np.random.default_rng(3).normal(size=(4000, 2)) @ np.array([1.0, 1j])
+    mine = doppler.spectrogram(signal, prf_hz=prf, window_s=n_window / prf, hop_s=hop / prf)
+    stft = ShortTimeFFT(hann(n_window, sym=False), hop=hop, fs=prf, fft_mode="centered", scale_to="magnitude")
+    p0, p1 = stft.lower_border_end[1], stft.upper_border_begin(len(signal))[1]
+    reference = np.abs(stft.stft(signal, p0=p0, p1=p1)) ** 2
+    np.testing.assert_allclose(mine.power, reference, rtol=1e-9, atol=1e-12 * reference.max())
+    np.testing.assert_allclose(mine.t_s, stft.t(len(signal), p0=p0, p1=p1))
+    np.testing.assert_allclose(mine.f_hz, stft.f)
+
+
+def test_spectrogram_of_a_short_signal_has_one_frame():
+    spec = doppler.spectrogram(np.ones(20, complex), prf_hz=1000.0, window_s=0.1, hop_s=0.05)
+    assert spec.power.shape[1] == 1 and np.all(np.isfinite(spec.power))
+    assert spec.f_hz[np.argmax(spec.power[:, 0])] == 0.0
