@@ -9,18 +9,16 @@ simulate against a bare h5py write of the same array (benchmarks/bench_simulate.
 """
 
 import argparse
-import resource
 import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from bench_simulate import full_size  # noqa: E402
+from bench_simulate import child, full_size  # noqa: E402
 
 BARE_READ = r"""
 import sys, time, h5py, numpy as np
@@ -34,16 +32,6 @@ with h5py.File(sys.argv[1], "r") as h5:
             ds.read_direct(buffer, np.s_[first:first + rows], np.s_[:rows])
 print(time.perf_counter() - start)
 """
-
-
-def child(argv):
-    """Wall time and peak RSS (MB) of a child process; the RSS is read from the child alone (fresh counter)."""
-    wrapper = ("import resource, subprocess, sys, time; s = time.perf_counter(); "
-               "subprocess.run(sys.argv[1:], check=True, stdout=subprocess.DEVNULL); "
-               "print(time.perf_counter() - s, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024)")
-    out = subprocess.run([sys.executable, "-c", wrapper, *argv], check=True, capture_output=True, text=True).stdout
-    wall, rss = out.split()
-    return float(wall), float(rss)
 
 
 def measure(capture, out_dir, repeats):

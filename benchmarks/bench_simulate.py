@@ -11,7 +11,6 @@ Prints three tables:
 import argparse
 import json
 import os
-import resource
 import statistics
 import subprocess
 import sys
@@ -42,12 +41,18 @@ print(time.perf_counter() - start)
 """
 
 
-def run_child(argv):
-    """Run a child process; return (wall seconds, its stdout, peak RSS of the largest child so far in MB)."""
-    start = time.perf_counter()
-    out = subprocess.run(argv, check=True, capture_output=True, text=True).stdout
-    wall = time.perf_counter() - start
-    return wall, out, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+def child(argv):
+    """Wall time and peak RSS (MB) of one child process.
+
+    A wrapper process runs it, so the RSS counter (the largest child ever, per process) holds that
+    child alone.
+    """
+    wrapper = ("import resource, subprocess, sys, time; s = time.perf_counter(); "
+               "subprocess.run(sys.argv[1:], check=True, stdout=subprocess.DEVNULL); "
+               "print(time.perf_counter() - s, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024)")
+    out = subprocess.run([sys.executable, "-c", wrapper, *argv], check=True, capture_output=True, text=True).stdout
+    wall, rss = out.split()
+    return float(wall), float(rss)
 
 
 def full_size(workdir, repeats):
@@ -59,17 +64,16 @@ def full_size(workdir, repeats):
     sim_times, write_times = [], []
     sim_rss = write_rss = 0.0
     try:
-        for _ in range(repeats):
-            wall, _, _ = run_child([sys.executable, "-c", H5_WRITE, str(baseline), str(r.n_chirps),
-                                    str(r.n_samples), str(r.n_channels), "512"])
+        for _ in range(repeats):  # alternating, so both see the same machine
+            wall, rss = child([sys.executable, "-c", H5_WRITE, str(baseline), str(r.n_chirps),
+                               str(r.n_samples), str(r.n_channels), "512"])
             write_times.append(wall)
+            write_rss = max(write_rss, rss)
             baseline.unlink()
-        write_rss = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
-        for _ in range(repeats):
-            wall, _, rss = run_child([str(Path(sys.executable).parent / "mdpipe"), "simulate", "--config",
-                                      str(config), "-o", str(target)])
+            wall, rss = child([str(Path(sys.executable).parent / "mdpipe"), "simulate", "--config",
+                               str(config), "-o", str(target)])
             sim_times.append(wall)
-            sim_rss = rss
+            sim_rss = max(sim_rss, rss)
             size_gb = target.stat().st_size / 1e9
             target.unlink()
     finally:
