@@ -50,3 +50,16 @@ def test_spectrogram_of_a_short_signal_has_one_frame():
     spec = doppler.spectrogram(np.ones(20, complex), prf_hz=1000.0, window_s=0.1, hop_s=0.05)
     assert spec.power.shape[1] == 1 and np.all(np.isfinite(spec.power))
     assert spec.f_hz[np.argmax(spec.power[:, 0])] == 0.0
+
+
+@pytest.mark.parametrize("k", [2, 5, 12, 20])
+def test_lagrange_basis_is_barycentric_interpolator(k):
+    from scipy.interpolate import BarycentricInterpolator
+
+    from mdpipe.simulate.synth import chebyshev_nodes_s, lagrange_basis
+
+    nodes = chebyshev_nodes_s(k, 51.2e-6)
+    times = np.arange(2048) / 40e6
+    expected = BarycentricInterpolator(nodes, np.eye(k))(times).T
+    np.testing.assert_allclose(lagrange_basis(nodes, times), expected, atol=1e-9)
+    np.testing.assert_allclose(lagrange_basis(nodes, nodes), np.eye(k), atol=1e-12)  # exactly on the nodes

@@ -22,8 +22,8 @@ def samples():
 
 def write_canonical(path, samples, truth=None):
     with CaptureWriter(path, PARAMS, samples.shape[1], creator="test", truth=truth, chunk_rows=16) as w:
-        w.write_chirps(0, samples[:, :25])
-        w.write_chirps(25, samples[:, 25:])
+        w.write_chirps(0, samples[:, :16])
+        w.write_chirps(16, samples[:, 16:])
 
 
 def write_raw(path, attrs, datasets):
@@ -52,6 +52,13 @@ def test_canonical_round_trip(tmp_path, samples):
         chunks = list(cap.iter_chunks(chunk_chirps=16, channels=[2]))
         assert [first for first, _ in chunks] == [0, 16, 32]
         np.testing.assert_array_equal(np.concatenate([b for _, b in chunks])[:, 0], block[:, 2])
+
+
+def test_writer_needs_chunk_aligned_writes(tmp_path, samples):
+    with pytest.raises(ValueError, match=r"first_chirp=5 must be a multiple of chunk_rows=16"):
+        with CaptureWriter(tmp_path / "c.h5", PARAMS, 40, creator="test", chunk_rows=16) as w:
+            w.write_chirps(5, samples[:, 5:10])
+    assert not (tmp_path / "c.h5").exists()
 
 
 def test_writer_leaves_no_file_when_interrupted(tmp_path, samples):

@@ -15,7 +15,7 @@ samples).
 
 import json
 import os
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import h5py
 import numpy as np
@@ -277,54 +277,75 @@ class CaptureWriter:
     """Write a canonical Radarlog capture chunk by chunk; the file appears only when complete.
 
     Use as a context manager; data goes to ``<path>.partial`` and is renamed on success.
+
+    HDF5 allocates every row chunk of every channel when the datasets are made (early allocation,
+    no fill); the chunks' byte offsets are looked up once, and :meth:`write_chirps` writes the rows
+    straight to them with ``os.pwrite``, which, unlike h5py, releases the GIL: the simulation
+    threads keep running while a chunk is written (through h5py, the writes serialised them and
+    cost 2 s of a 4.5 s full-size run). Uncompressed chunks hold exactly the rows' bytes, so the
+    file is ordinary HDF5.
     """
 
     def __init__(self, path, params, n_chirps, *, creator, truth=None, chunk_rows=64):
         self.path = os.fspath(path)
         self.params, self.n_chirps = params, int(n_chirps)
+        self.chunk_rows = max(1, min(chunk_rows, self.n_chirps))
         self._partial = self.path + ".partial"
-        self._h5 = h5py.File(self._partial, "w")
-        attrs = self._h5.attrs
-        attrs["fStrt"] = np.float64(params.f_start_hz)
-        attrs["fStop"] = np.float64(params.f_stop_hz)
-        attrs["TRampUp"] = np.float64(params.ramp_up_s)
-        attrs["TRampDo"] = np.float64(params.ramp_down_s)
-        attrs["Tp"] = np.float64(params.chirp_period_s)
-        attrs["fs"] = np.float64(params.sample_rate_hz)
-        attrs["N"] = np.int64(params.n_samples)
-        attrs["NrChn"] = np.int64(params.n_channels)
-        attrs["FuSca"] = np.float64(params.full_scale_v_per_lsb)
-        attrs["Creator"] = creator
-        rows = max(1, min(chunk_rows, self.n_chirps))
-        self.channels = [
-            self._h5.create_dataset(f"Chn{c + 1}", shape=(self.n_chirps, params.n_samples), dtype=np.int16,
-                                    chunks=(rows, params.n_samples))
-            for c in range(params.n_channels)]
-        if params.rx_positions_m:
-            self._h5.create_dataset("RxPosn", data=np.asarray(params.rx_positions_m, dtype=np.float64))
-        if truth is not None:
-            self.write_truth(**truth)
+        self._truth = truth
+        with h5py.File(self._partial, "w") as h5:
+            attrs = h5.attrs
+            attrs["fStrt"] = np.float64(params.f_start_hz)
+            attrs["fStop"] = np.float64(params.f_stop_hz)
+            attrs["TRampUp"] = np.float64(params.ramp_up_s)
+            attrs["TRampDo"] = np.float64(params.ramp_down_s)
+            attrs["Tp"] = np.float64(params.chirp_period_s)
+            attrs["fs"] = np.float64(params.sample_rate_hz)
+            attrs["N"] = np.int64(params.n_samples)
+            attrs["NrChn"] = np.int64(params.n_channels)
+            attrs["FuSca"] = np.float64(params.full_scale_v_per_lsb)
+            attrs["Creator"] = creator
+            self._offsets = [self._allocate(h5, f"Chn{c + 1}") for c in range(params.n_channels)]
+            if params.rx_positions_m:
+                h5.create_dataset("RxPosn", data=np.asarray(params.rx_positions_m, dtype=np.float64))
+        self._fd = os.open(self._partial, os.O_WRONLY)
+
+    def _allocate(self, h5, name):
+        """Make a row-chunked int16 dataset with all chunks allocated; return the chunks' byte offsets."""
+        shape = (self.n_chirps, self.params.n_samples)
+        dcpl = h5py.h5p.create(h5py.h5p.DATASET_CREATE)
+        dcpl.set_chunk((self.chunk_rows, self.params.n_samples))
+        dcpl.set_alloc_time(h5py.h5d.ALLOC_TIME_EARLY)
+        dcpl.set_fill_time(h5py.h5d.FILL_TIME_NEVER)
+        dataset = h5py.h5d.create(h5.id, name.encode(), h5py.h5t.STD_I16LE, h5py.h5s.create_simple(shape),
+                                  dcpl=dcpl)
+        return [dataset.get_chunk_info_by_coord((row, 0)).byte_offset
+                for row in range(0, self.n_chirps, self.chunk_rows)]
 
     def write_chirps(self, first_chirp, block):
-        """Store ``block`` (channels, chirps, samples) of int16 at ``first_chirp``."""
-        for dataset, rows in zip(self.channels, block):
-            dataset[first_chirp:first_chirp + rows.shape[0]] = rows
+        """Store ``block`` (channels, chirps, samples) of int16 at ``first_chirp`` (a multiple of ``chunk_rows``)."""
+        if first_chirp % self.chunk_rows:
+            raise ValueError(f"first_chirp={first_chirp} must be a multiple of chunk_rows={self.chunk_rows}")
+        block = np.asarray(block, dtype="<i2")
+        for offsets, rows in zip(self._offsets, block):
+            for start in range(0, rows.shape[0], self.chunk_rows):
+                piece = np.ascontiguousarray(rows[start:start + self.chunk_rows])
+                os.pwrite(self._fd, memoryview(piece).cast("B"), offsets[(first_chirp + start) // self.chunk_rows])
 
     def write_truth(self, *, scene_yaml, expected):
-        group = self._h5.require_group("Truth")
-        group.attrs["scene_yaml"] = scene_yaml
-        group.attrs["expected_json"] = json.dumps(expected, indent=1)
-
-    def set_full_scale(self, full_scale_v_per_lsb):
-        self.params = replace(self.params, full_scale_v_per_lsb=full_scale_v_per_lsb)
-        self._h5.attrs["FuSca"] = np.float64(full_scale_v_per_lsb)
+        """Keep the truth for ``/Truth``, written when the capture is complete."""
+        self._truth = {"scene_yaml": scene_yaml, "expected": expected}
 
     def __enter__(self):
         return self
 
     def __exit__(self, exc_type, exc, tb):
-        self._h5.close()
-        if exc_type is None:
-            os.replace(self._partial, self.path)
-        else:
+        os.close(self._fd)
+        if exc_type is not None:
             os.remove(self._partial)
+            return
+        if self._truth is not None:
+            with h5py.File(self._partial, "r+") as h5:
+                group = h5.require_group("Truth")
+                group.attrs["scene_yaml"] = self._truth["scene_yaml"]
+                group.attrs["expected_json"] = json.dumps(self._truth["expected"], indent=1)
+        os.replace(self._partial, self.path)

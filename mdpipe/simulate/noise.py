@@ -3,9 +3,10 @@
 numpy's ziggurat costs ~8 ns per float32 normal here, against ~0.4 ns for the random bits
 themselves. The Box-Muller transform ``(r cos t, r sin t)`` with ``r = sqrt(-2 ln u1)``,
 ``t = 2 pi u2`` turns two independent uniforms into two independent standard normals exactly; on
-whole arrays it runs on numpy's SIMD log/sqrt/sin/cos in ~4 ns per sample. ``u1`` is a float64
-uniform (53 bits: the tail reaches 8.6 sigma; float32 would stop at 5.8 sigma, which 1.3 GB of
-samples would notice), ``t`` a float32 uniform angle (2 pi / 2^24 steps).
+whole arrays it runs on numpy's SIMD log/sqrt/sin/cos in ~5 ns per sample. ``u1`` is drawn as a
+float64 uniform (53 bits: the tail reaches 8.6 sigma; a float32 draw would stop at 5.8 sigma,
+which 1.3 GB of samples would notice) and its log taken in float32 (small values keep their
+magnitude there; 10 % faster than float64); ``t`` is a float32 uniform angle (2 pi / 2^24 steps).
 """
 
 import numpy as np
@@ -27,12 +28,12 @@ def standard_normal_f32(rng, out, *, scale=1.0):
     """
     flat = out.reshape(-1)
     half = (flat.size + 1) // 2
-    radius = rng.random(half)
-    np.subtract(1.0, radius, out=radius)  # (0, 1]: no log(0)
-    np.log(radius, out=radius)
-    np.multiply(radius, -2.0 * scale * scale, out=radius)
-    np.sqrt(radius, out=radius)
-    radius32 = radius.astype(np.float32)
+    uniform = rng.random(half)
+    np.subtract(1.0, uniform, out=uniform)  # (0, 1]: no log(0)
+    radius32 = uniform.astype(np.float32)
+    np.log(radius32, out=radius32)
+    np.multiply(radius32, np.float32(-2.0 * scale * scale), out=radius32)
+    np.sqrt(radius32, out=radius32)
     angle = rng.random(half, dtype=np.float32)
     np.multiply(angle, np.float32(2.0 * np.pi), out=angle)
     second = flat.size - half

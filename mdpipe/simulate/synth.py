@@ -17,7 +17,6 @@ the order in which the file stores them.
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import BarycentricInterpolator
 
 from mdpipe.physics import kinematics
 from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS, beat_frequency_hz
@@ -34,10 +33,27 @@ def chebyshev_nodes_s(count, duration_s):
 
 
 def lagrange_basis(nodes_s, times_s):
-    """Matrix (K, N) whose row k is the Lagrange polynomial of node k evaluated at ``times_s``."""
-    if len(nodes_s) == 1:
-        return np.ones((1, len(times_s)))
-    return BarycentricInterpolator(nodes_s, np.eye(len(nodes_s)))(times_s).T
+    """Matrix (K, N) whose row k is the Lagrange polynomial of node k evaluated at ``times_s``.
+
+    Barycentric form on nodes and times mapped to [-1, 1] (the basis is invariant under that map,
+    and the weights stay well scaled).
+    """
+    nodes = np.asarray(nodes_s, dtype=np.float64)
+    times = np.asarray(times_s, dtype=np.float64)
+    if len(nodes) == 1:
+        return np.ones((1, len(times)))
+    centre, half = 0.5 * (nodes.max() + nodes.min()), 0.5 * (nodes.max() - nodes.min())
+    x, t = (nodes - centre) / half, (times - centre) / half
+    differences = x[:, None] - x[None, :]
+    np.fill_diagonal(differences, 1.0)
+    weights = 1.0 / differences.prod(axis=1)
+    offsets = t[None, :] - x[:, None]
+    on_node = offsets == 0.0
+    terms = weights[:, None] / np.where(on_node, 1.0, offsets)
+    basis = terms / terms.sum(axis=0)
+    hit = on_node.any(axis=0)
+    basis[:, hit] = on_node[:, hit]
+    return basis
 
 
 @dataclass(frozen=True)
@@ -70,12 +86,14 @@ def plan_targets(scene, *, chunk_chirps=CHUNK_CHIRPS):
     return plans
 
 
-def noise_free_if(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0):
-    """Noise-free IF of chirps ``first_chirp ... first_chirp + n_chirps - 1``, in volts times ``scale``.
+def if_factors(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0):
+    """The two factors of the noise-free IF of chirps ``first_chirp ... first_chirp + n_chirps - 1``.
 
     Returns
     -------
-    ndarray, float32, shape (n_channels, n_chirps, n_samples)
+    lhs : ndarray, float32, shape (n_channels, n_chirps, 2 sum K)
+    rhs : ndarray, float32, shape (2 sum K, n_samples)
+        ``lhs @ rhs`` is the IF in volts times ``scale``.
     """
     channels = np.arange(radar.n_channels) if channels is None else np.asarray(channels)
     rx_y_m = np.asarray(radar.rx_positions_m or np.zeros(radar.n_channels))[channels]
@@ -83,7 +101,7 @@ def noise_free_if(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1
     tau = radar.sample_times_s
     t_m = (first_chirp + np.arange(n_chirps)) * radar.chirp_period_s
     if not plans:
-        return np.zeros((len(channels), n_chirps, radar.n_samples), dtype=np.float32)
+        return np.zeros((len(channels), n_chirps, 0), np.float32), np.zeros((0, radar.n_samples), np.float32)
     g_blocks, b_blocks = [], []
     for plan in plans:
         echo = target_echo(plan.target, t_m[:, None] + plan.nodes_s, f0_hz=f0_hz)
@@ -102,4 +120,15 @@ def noise_free_if(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1
     b_all = np.concatenate(b_blocks, axis=0)
     lhs = np.concatenate([g_all.real, -g_all.imag], axis=-1).astype(np.float32)
     rhs = (scale * np.concatenate([b_all.real, b_all.imag], axis=0)).astype(np.float32)
+    return lhs, rhs
+
+
+def noise_free_if(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0):
+    """Noise-free IF of chirps ``first_chirp ... first_chirp + n_chirps - 1``, in volts times ``scale``.
+
+    Returns
+    -------
+    ndarray, float32, shape (n_channels, n_chirps, n_samples)
+    """
+    lhs, rhs = if_factors(plans, first_chirp, n_chirps, radar=radar, channels=channels, scale=scale)
     return lhs @ rhs
