@@ -17,6 +17,9 @@ from numpy.lib.stride_tricks import sliding_window_view
 from mdpipe.process.filters import running_median
 
 
+STFT_BLOCK_FRAMES = 4096
+
+
 @dataclass(frozen=True)
 class Spectrogram:
     """Power (f, t) in V^2 per bin, with its axes ``f_hz`` (centred) and ``t_s`` (frame centres)."""
@@ -61,16 +64,20 @@ def spectrogram(signal, *, prf_hz, window_s, hop_s):
     first = -(-(middle - 1) // hop)
     last = (len(signal) - n_window + middle) // hop + 1
     padded = np.pad(signal, (1, 0))  # the zero under the window's zero first sample
+    starts = np.arange(first, last) * hop - middle + 1
     if last <= first:  # too short for a frame free of the borders: one padded frame in the middle
         padded = np.pad(signal, (middle, n_window))
         first = last = len(signal) // 2 // hop
         last += 1
-        frames = sliding_window_view(padded, n_window)[first * hop:first * hop + 1]
-    else:
-        frames = sliding_window_view(padded, n_window)[np.arange(first, last) * hop - middle + 1]
+        starts = np.array([first * hop])
+    views = sliding_window_view(padded, n_window)
     window = periodic_hann(n_window)
-    spectra = np.fft.fftshift(np.fft.fft(frames * window, axis=-1), axes=-1) / window.sum()
-    return Spectrogram(power=np.abs(spectra.T) ** 2, t_s=np.arange(first, last) * hop / prf_hz,
+    power = np.empty((n_window, len(starts)))
+    for block in range(0, len(starts), STFT_BLOCK_FRAMES):  # bounded temporaries, whatever the dwell
+        frames = views[starts[block:block + STFT_BLOCK_FRAMES]] * window
+        spectra = np.fft.fftshift(np.fft.fft(frames, axis=-1), axes=-1) / window.sum()
+        power[:, block:block + STFT_BLOCK_FRAMES] = np.abs(spectra.T) ** 2
+    return Spectrogram(power=power, t_s=np.arange(first, last) * hop / prf_hz,
                        f_hz=np.fft.fftshift(np.fft.fftfreq(n_window, 1.0 / prf_hz)),
                        window_s=n_window / prf_hz, hop_s=hop / prf_hz)
 

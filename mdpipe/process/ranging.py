@@ -65,13 +65,14 @@ def transform(counts, matrix, dtype):
     cache (one large temporary instead costs ~4x the time, in page faults and memory traffic).
     """
     c, m, n = counts.shape
-    rows = counts.reshape(c * m, n)
-    product = np.empty((c * m, matrix.shape[1]), dtype=matrix.dtype)
-    for start in range(0, c * m, TRANSFORM_ROWS):
-        np.matmul(rows[start:start + TRANSFORM_ROWS].astype(dtype), matrix, out=product[start:start + TRANSFORM_ROWS])
+    product = np.empty((c, m, matrix.shape[1]), dtype=matrix.dtype)
+    for channel in range(c):  # one channel's rows are contiguous even in a partial view of a buffer
+        for start in range(0, m, TRANSFORM_ROWS):
+            np.matmul(counts[channel, start:start + TRANSFORM_ROWS].astype(dtype), matrix,
+                      out=product[channel, start:start + TRANSFORM_ROWS])
     k = matrix.shape[1] // 2
     unit = np.array(1j, dtype=np.result_type(matrix.dtype, np.complex64))  # keeps float32 single precision
-    return (product[:, :k] + unit * product[:, k:]).reshape(c, m, k)
+    return product[..., :k] + unit * product[..., k:]
 
 
 @dataclass(frozen=True)
@@ -157,22 +158,31 @@ def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_r
     if reader.n_chirps * min(probe_chirps, chunk_chirps) / chunk_chirps < MIN_PROBED_CHIRPS:
         probe_chirps = chunk_chirps
     rows = [min(probe_chirps, chunk_chirps, reader.n_chirps - first) for first in firsts]
+    n_ch = params.n_channels
+    total = np.zeros((len(ranges), n_ch), dtype=np.complex128)
+    power = np.zeros(len(ranges))
+    cross = np.zeros((len(gate), n_ch, n_ch), dtype=np.complex128)
+    chunk_power, clipped, counted = [], 0, 0
     with threadpool_limits(limits=1, user_api="blas"), ThreadPoolExecutor(WORKERS) as pool:
-        parts = list(pool.map(lambda job: _probe(reader, *job, matrix, gate, clip), zip(firsts, rows)))
+        for part in pool.map(lambda job: _probe(reader, *job, matrix, gate, clip), zip(firsts, rows)):
+            total += part[0]  # summed as they come: memory does not grow with the capture
+            power += part[1]
+            cross += part[2]
+            chunk_power.append(part[3])
+            clipped += part[4]
+            counted += part[5]
     scale = params.full_scale_v_per_lsb
     n = sum(rows)
-    n_ch = params.n_channels
-    mean = sum(p[0] for p in parts) * (scale / n)
+    mean = total * (scale / n)
     static = np.sum(np.abs(mean) ** 2, axis=1) / n_ch
-    moving = sum(p[1] for p in parts) * (scale ** 2 / (n * n_ch)) - static
+    moving = power * (scale ** 2 / (n * n_ch)) - static
     gmean = mean[gate]
-    covariance = sum(p[2] for p in parts) * (scale ** 2 / n) - gmean[:, :, None] * gmean[:, None, :].conj()
+    covariance = cross * (scale ** 2 / n) - gmean[:, :, None] * gmean[:, None, :].conj()
     chunk_t = np.array([(first + 0.5 * r) * params.chirp_period_s for first, r in zip(firsts, rows)])
     return GateStatistics(range_m=ranges, static_power=static, moving_power=np.maximum(moving, 0.0), gate_bins=gate,
                           mean=gmean, covariance=covariance,
-                          chunk_power=np.array([p[3] for p in parts]).reshape(-1, len(gate)) * scale ** 2,
-                          chunk_t_s=chunk_t, n_chirps=reader.n_chirps,
-                          clipped_fraction=sum(p[4] for p in parts) / sum(p[5] for p in parts))
+                          chunk_power=np.array(chunk_power).reshape(-1, len(gate)) * scale ** 2,
+                          chunk_t_s=chunk_t, n_chirps=reader.n_chirps, clipped_fraction=clipped / counted)
 
 
 def slow_time(reader, bins, weights, *, window="hann", zero_pad=1, chunk_chirps=READ_CHIRPS, dtype="float32",
