@@ -229,13 +229,6 @@ class RadarlogReader:
                 f"{self.path}: chirps {start}..{stop - 1} hold NaN or Inf samples; the capture is corrupt")
         return block
 
-    @property
-    def clip_level_v(self):
-        """Magnitude (V) at which int16 samples saturate, or None for float samples."""
-        if self.layout.sample_dtype != "int16":
-            return None
-        return 32767 * self.params.full_scale_v_per_lsb
-
     def read_chirps(self, start, stop, *, channels=None):
         """Chirps ``start:stop`` as float32 volts, shape (chirps, channels, samples)."""
         out = self.read_counts(start, stop, channels=channels).transpose(1, 0, 2).astype(np.float32)

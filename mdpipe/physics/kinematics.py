@@ -43,9 +43,3 @@ def line_of_sight(position_m):
 def range_rate_mps(position_m, velocity_mps):
     """Rate of change of range, positive when receding."""
     return np.sum(line_of_sight(position_m) * velocity_mps, axis=-1)
-
-
-def azimuth_rad(position_m):
-    """Angle from boresight towards +y (the array axis), in the horizontal plane."""
-    p = np.asarray(position_m)
-    return np.arctan2(p[..., 1], p[..., 0])
