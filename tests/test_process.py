@@ -153,6 +153,7 @@ def test_snr_known_answer_and_channel_combining_gain(tmp_path):
     expected = -5.0 + 10 * np.log10(256) - 10 * np.log10(256 * np.sum(window ** 2) / np.sum(window) ** 2) - 10 * np.log10(2)
     assert one.rows[0]["snr_db"] == pytest.approx(expected, abs=0.5)
     assert four.rows[0]["snr_db"] - one.rows[0]["snr_db"] == pytest.approx(10 * np.log10(4), abs=0.5)
+    assert four.rows[0]["rx_gain_db"] == pytest.approx(10 * np.log10(4), abs=0.5)
     assert abs(four.rows[0]["range_m"] - 30.0) < 3.75
     assert one.rows[0]["class"] == "none" and "neither blade flashes nor a wingbeat" in one.rows[0]["notes"]
 

@@ -28,24 +28,28 @@ class CaptureResult:
 
 
 def _target_signals(reader, stats, detections, process):
-    """Pass 2: each detection's slow time, followed across bins and stitched."""
+    """Pass 2: each detection's gate path, its slow time (followed across bins, stitched) and RX gain (dB).
+
+    The gain is that of coherent combining in the bin where the target spent most chunks.
+    """
     paths = [selection.track(stats, d) for d in detections]
     used = sorted({int(g) for path in paths for g in path})
     weights, gains = selection.channel_weights(stats.covariance[used])
     columns = ranging.slow_time(reader, stats.gate_bins[used], weights, window=process.range_window,
                                 zero_pad=process.zero_pad, dtype=process.dtype, all_bins=process.range_bins == "all")
     column_of = {g: i for i, g in enumerate(used)}
-    signals = []
+    targets = []
     for path in paths:
         mapped = np.array([column_of[int(g)] for g in path])
-        signals.append((selection.stitch(columns, mapped, process.chunk_chirps), mapped, gains))
-    return paths, signals
+        targets.append((path, selection.stitch(columns, mapped, process.chunk_chirps),
+                        float(gains[np.bincount(mapped).argmax()])))
+    return targets
 
 
-def _base_row(path, detection, stats, process, params):
+def _base_row(path, stats, process, params):
     return {
         "file": str(path), "target": None, "class": "none", "range_m": None, "range_bin": None,
-        "range_min_m": None, "range_max_m": None, **dict.fromkeys(FEATURE_KEYS),
+        "range_min_m": None, "range_max_m": None, "rx_gain_db": None, **dict.fromkeys(FEATURE_KEYS),
         "elevation_deg": process.elevation_deg, "n_blades": process.n_blades, "threshold_db": process.threshold_db,
         "wavelength_m": params.wavelength_m, "prf_hz": params.prf_hz, "dwell_s": params.duration_s(stats.n_chirps),
         "mdpipe_version": __version__,
@@ -83,25 +87,26 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None):
                                  "amplitudes and spectra are distorted")
         rows, analyses = [], []
         if not detections:
-            row = _base_row(path, None, stats, process, params)
+            row = _base_row(path, stats, process, params)
             power = stats.gate_moving_power
             strongest = 10 * np.log10(power.max() / noise / params.n_channels) if noise > 0 else 0.0
             row["notes"] = "; ".join([f"no moving target above the noise in {process.min_range_m:g}-"
                                       f"{process.max_range_m:g} m (strongest bin {strongest:.1f} dB < "
                                       f"{process.detection_db:g} dB)"] + capture_notes)
             return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row])
-        paths, signals = _target_signals(reader, stats, detections, process)
-    for index, (detection, path_gates, (signal, _, gains)) in enumerate(zip(detections, paths, signals)):
+        targets = _target_signals(reader, stats, detections, process)
+        layout = reader.layout.describe()
+    for index, (detection, (path_gates, signal, rx_gain_db)) in enumerate(zip(detections, targets)):
         analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
                                   noise_power=noise, params=process)
         ranges = stats.gate_range_m[path_gates]
-        row = _base_row(path, detection, stats, process, params)
+        row = _base_row(path, stats, process, params)
         row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),
-                   range_min_m=float(ranges.min()), range_max_m=float(ranges.max()))
+                   range_min_m=float(ranges.min()), range_max_m=float(ranges.max()), rx_gain_db=rx_gain_db)
         row.update(analysis.row)
         label, reason = classify(row, detected=True)
         row["class"] = label
         row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + capture_notes)
         rows.append(row)
         analyses.append(analysis)
-    return CaptureResult(str(path), params, "", stats, detections, analyses, rows)
+    return CaptureResult(str(path), params, layout, stats, detections, analyses, rows)
