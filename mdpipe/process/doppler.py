@@ -90,18 +90,16 @@ def power_spectrum(signal, *, prf_hz):
     return PowerSpectrum(power=np.abs(spectrum) ** 2, f_hz=np.fft.fftshift(np.fft.fftfreq(n, 1.0 / prf_hz)))
 
 
-def body_doppler_track(signal, *, prf_hz, frame_s=0.032):
-    """Doppler of the strongest line in frames of ``frame_s`` (the body), at every chirp.
+def peak_track_hz(spec, *, n_chirps, prf_hz):
+    """Doppler of the strongest line of each frame of ``spec`` (the body), at each of ``n_chirps`` chirps.
 
     Per frame the peak of the spectrum is refined by a parabola through its neighbours; the track is
     median-filtered over 5 frames and interpolated to the chirps.
 
     Returns
     -------
-    ndarray (len(signal),), Hz
+    ndarray (n_chirps,), Hz
     """
-    frame_s = min(frame_s, len(signal) / prf_hz)
-    spec = spectrogram(signal, prf_hz=prf_hz, window_s=frame_s, hop_s=frame_s / 4)
     log_power = np.log(spec.power + np.finfo(float).tiny)
     peak = np.argmax(spec.power, axis=0)
     inner = np.clip(peak, 1, len(spec.f_hz) - 2)
@@ -110,8 +108,7 @@ def body_doppler_track(signal, *, prf_hz, frame_s=0.032):
     shift = np.where(curvature < 0, 0.5 * (left - right) / np.where(curvature < 0, curvature, -1), 0.0)
     f_peak = spec.f_hz[inner] + np.clip(shift, -0.5, 0.5) * (spec.f_hz[1] - spec.f_hz[0])
     f_peak = running_median(f_peak, min(5, len(f_peak)) | 1)
-    t = np.arange(len(signal)) / prf_hz
-    return np.interp(t, spec.t_s, f_peak)
+    return np.interp(np.arange(n_chirps) / prf_hz, spec.t_s, f_peak)
 
 
 def demodulate(signal, doppler_hz, *, prf_hz):

@@ -54,8 +54,8 @@ def body_line(signal, *, prf_hz):
     than two bins away; otherwise (rotating parts only, or phase-locked rotors whose interference
     skews the spectrum) there is no body line and the track is None.
     """
-    spec = doppler.spectrogram(signal, prf_hz=prf_hz, window_s=min(BODY_FRAME_S, len(signal) / prf_hz),
-                               hop_s=BODY_FRAME_S / 4)
+    frame_s = min(BODY_FRAME_S, len(signal) / prf_hz)
+    spec = doppler.spectrogram(signal, prf_hz=prf_hz, window_s=frame_s, hop_s=frame_s / 4)
     power = spec.power
     peak = np.argmax(power, axis=0)
     masked = power.copy()
@@ -65,7 +65,7 @@ def body_line(signal, *, prf_hz):
     prominence = float(np.median(ratio_db))
     if prominence < BODY_LINE_DB:
         return None, prominence
-    return doppler.body_doppler_track(signal, prf_hz=prf_hz, frame_s=BODY_FRAME_S), prominence
+    return doppler.peak_track_hz(spec, n_chirps=len(signal), prf_hz=prf_hz), prominence
 
 
 def highpass(signal, *, prf_hz, cutoff_hz):
