@@ -35,6 +35,7 @@ ATTRIBUTES = {
 }
 OPTIONAL_ATTRIBUTES = {"TRampDo": ("ramp_down_s", 0.0), "FuSca": ("full_scale_v_per_lsb", 1.0)}
 SAMPLE_DTYPES = (np.int16, np.float32, np.float64)
+INT16_FULL_SCALE = 32767  # int16 samples span -32768 .. 32767 counts
 DETECTION_CHIRPS = 256
 DEFAULT_CHUNK_CHIRPS = 256
 

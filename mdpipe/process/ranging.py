@@ -29,12 +29,13 @@ from dataclasses import dataclass
 import numpy as np
 from threadpoolctl import threadpool_limits
 
+from mdpipe.io import INT16_FULL_SCALE
+
 PROBE_CHIRPS = 32
 TRANSFORM_ROWS = 128  # 128 x 2048 float32 = 1 MB: stays in L2
 READ_CHIRPS = 1024    # pass 2 reads: h5py costs ~0.1 ms a call; 1024 rows a call reach ~4.5 GB/s
 MIN_PROBED_CHIRPS = 2048
 WORKERS = min(2, os.cpu_count() or 1)
-INT16_FULL_SCALE = 32767
 
 
 RANGE_WINDOW_FUNCTIONS = {"hann": np.hanning, "hamming": np.hamming, "blackman": np.blackman, "boxcar": np.ones}

@@ -9,14 +9,13 @@ from threadpoolctl import threadpool_limits
 
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
-from mdpipe.io import CaptureWriter
+from mdpipe.io import INT16_FULL_SCALE, CaptureWriter
 from mdpipe.physics import kinematics
 from mdpipe.simulate.echoes import body_track, peak_amplitude_v, target_echo
 from mdpipe.simulate.noise import noise_streams, standard_normal_f32
 from mdpipe.simulate.synth import CHUNK_CHIRPS, if_factors, plan_targets
 from mdpipe.simulate.truth import expected_features
 
-INT16_MAX = 32767
 TILE_ROWS = 64
 NOISE_PEAK_SIGMAS = 7.0  # P(|n| > 7 sigma) = 2.6e-12 per sample: ~0.002 clipped samples in 1.3 GB
 POWER_SAMPLES = 20000
@@ -75,9 +74,10 @@ def synthesize_channel(lhs, rhs, out, *, sigma_lsb, rng):
         if sigma_lsb > 0:
             block += standard_normal_f32(rng, noise[:rows], scale=sigma_lsb)
         np.rint(block, out=block)
-        if block.min() < -INT16_MAX - 1 or block.max() > INT16_MAX:
-            clipped += int(np.count_nonzero(block > INT16_MAX) + np.count_nonzero(block < -INT16_MAX - 1))
-            np.clip(block, -INT16_MAX - 1, INT16_MAX, out=block)
+        if block.min() < -INT16_FULL_SCALE - 1 or block.max() > INT16_FULL_SCALE:
+            clipped += int(np.count_nonzero(block > INT16_FULL_SCALE)
+                           + np.count_nonzero(block < -INT16_FULL_SCALE - 1))
+            np.clip(block, -INT16_FULL_SCALE - 1, INT16_FULL_SCALE, out=block)
         np.copyto(out[start:start + rows], block, casting="unsafe")
     return clipped
 
@@ -98,10 +98,10 @@ def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps
     plans = plan_targets(scene, chunk_chirps=chunk_chirps)
     sigma_v = noise_sigma_v(scene, plans)
     if scene.adc.full_scale_v is not None:
-        lsb_v = scene.adc.full_scale_v / INT16_MAX
+        lsb_v = scene.adc.full_scale_v / INT16_FULL_SCALE
     else:
         peak_v = peak_signal_v(plans, radar, n_chirps) + NOISE_PEAK_SIGMAS * sigma_v
-        lsb_v = peak_v / INT16_MAX if peak_v > 0 else 1.0
+        lsb_v = peak_v / INT16_FULL_SCALE if peak_v > 0 else 1.0
     streams = noise_streams(scene.seed, radar.n_channels)
     sigma_lsb = sigma_v / lsb_v
     clipped = 0
