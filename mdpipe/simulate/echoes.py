@@ -118,10 +118,12 @@ def wing_speed_max_mps(target, *, samples=2048):
     return float(speed.max())
 
 
-def max_doppler_hz(target, t_s, *, wavelength_m):
-    """Bound on |Doppler| of any scatterer of the target over times ``t_s`` (Hz)."""
-    position, velocity = body_track(target, t_s)
-    body = float(np.max(np.abs(doppler_hz(kinematics.range_rate_mps(position, velocity),
+def max_doppler_hz(target, position_m, velocity_mps, *, wavelength_m):
+    """Bound on |Doppler| of any scatterer of the target along its body track (Hz).
+
+    ``position_m`` and ``velocity_mps`` (T, 3) are the track from :func:`body_track`.
+    """
+    body = float(np.max(np.abs(doppler_hz(kinematics.range_rate_mps(position_m, velocity_mps),
                                            wavelength_m=wavelength_m)), initial=0.0))
     if target.kind == "multirotor":
         rotors = target.rotors

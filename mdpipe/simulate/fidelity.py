@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mdpipe.physics import kinematics
-from mdpipe.simulate.echoes import body_track, max_doppler_hz
+from mdpipe.simulate.echoes import max_doppler_hz
 
 
 @dataclass(frozen=True)
@@ -51,11 +51,9 @@ def nodes_for_tolerance(cycles, tolerance, n_samples):
     return k
 
 
-def choose_model(target, *, radar, n_chirps, fidelity, chunk_chirps):
-    """Decide the :class:`TargetModel` of ``target`` from its motion and the radar."""
-    t_s = np.arange(n_chirps) * radar.chirp_period_s
-    position, velocity = body_track(target, t_s)
-    ranges = kinematics.range_m(position)
+def choose_model(target, *, radar, position_m, velocity_mps, fidelity, chunk_chirps):
+    """Decide the :class:`TargetModel` of ``target`` from its body track (T, 3) at the chirps, and the radar."""
+    ranges = kinematics.range_m(position_m)
     travel_bins = float(np.max(np.abs(ranges - ranges.mean())) / radar.range_bin_m)
     migration_bound = math.pi * travel_bins
     if fidelity.range_migration == "auto":
@@ -64,9 +62,10 @@ def choose_model(target, *, radar, n_chirps, fidelity, chunk_chirps):
         migration = fidelity.range_migration == "on"
     chunk_travel_bins = 0.0
     if migration:
-        speed = float(np.max(np.linalg.norm(velocity, axis=-1)))
+        speed = float(np.max(np.linalg.norm(velocity_mps, axis=-1)))
         chunk_travel_bins = speed * chunk_chirps * radar.chirp_period_s / radar.range_bin_m
-    cycles = max_doppler_hz(target, t_s, wavelength_m=radar.wavelength_m) * radar.sampled_duration_s
+    cycles = max_doppler_hz(target, position_m, velocity_mps, wavelength_m=radar.wavelength_m) \
+        * radar.sampled_duration_s
     cycles += chunk_travel_bins
     if fidelity.in_chirp_motion == "off":
         nodes = 1

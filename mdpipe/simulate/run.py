@@ -10,8 +10,7 @@ from threadpoolctl import threadpool_limits
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import INT16_FULL_SCALE, CaptureWriter
-from mdpipe.physics import kinematics
-from mdpipe.simulate.echoes import body_track, peak_amplitude_v, target_echo
+from mdpipe.simulate.echoes import peak_amplitude_v, target_echo
 from mdpipe.simulate.noise import noise_streams, standard_normal_f32
 from mdpipe.simulate.synth import CHUNK_CHIRPS, if_factors, plan_targets
 from mdpipe.simulate.truth import expected_features
@@ -31,11 +30,9 @@ def moving_signal_power_v2(plans, radar, n_chirps):
     return power
 
 
-def peak_signal_v(plans, radar, n_chirps):
+def peak_signal_v(plans):
     """Bound on the noise-free IF magnitude over the whole capture."""
-    t_s = np.arange(n_chirps) * radar.chirp_period_s
-    return sum(peak_amplitude_v(p.target, float(kinematics.range_m(body_track(p.target, t_s)[0]).min()))
-               for p in plans)
+    return sum(peak_amplitude_v(p.target, p.min_range_m) for p in plans)
 
 
 def noise_sigma_v(scene, plans):
@@ -100,7 +97,7 @@ def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps
     if scene.adc.full_scale_v is not None:
         lsb_v = scene.adc.full_scale_v / INT16_FULL_SCALE
     else:
-        peak_v = peak_signal_v(plans, radar, n_chirps) + NOISE_PEAK_SIGMAS * sigma_v
+        peak_v = peak_signal_v(plans) + NOISE_PEAK_SIGMAS * sigma_v
         lsb_v = peak_v / INT16_FULL_SCALE if peak_v > 0 else 1.0
     streams = noise_streams(scene.seed, radar.n_channels)
     sigma_lsb = sigma_v / lsb_v

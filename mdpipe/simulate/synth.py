@@ -58,13 +58,15 @@ def lagrange_basis(nodes_s, times_s):
 
 @dataclass(frozen=True)
 class TargetPlan:
-    """A target with its chosen model, its interpolation nodes (s within the ramp) and basis (K, N)."""
+    """A target with its chosen model, interpolation nodes (s within the ramp) and basis (K, N), and the
+    mean and smallest range of its body over the capture."""
 
     target: object
     model: object
     nodes_s: np.ndarray
     basis: np.ndarray
     mean_range_m: float
+    min_range_m: float
 
 
 def plan_targets(scene, *, chunk_chirps=CHUNK_CHIRPS):
@@ -73,16 +75,18 @@ def plan_targets(scene, *, chunk_chirps=CHUNK_CHIRPS):
     n_chirps = scene.radar.n_chirps
     tau = radar.sample_times_s
     plans = []
+    t_s = np.arange(n_chirps) * radar.chirp_period_s
     for target in scene.targets:
-        model = choose_model(target, radar=radar, n_chirps=n_chirps, fidelity=scene.fidelity,
-                             chunk_chirps=chunk_chirps)
+        position, velocity = body_track(target, t_s)  # once per target; the model and the plan share it
+        ranges = kinematics.range_m(position)
+        model = choose_model(target, radar=radar, position_m=position, velocity_mps=velocity,
+                             fidelity=scene.fidelity, chunk_chirps=chunk_chirps)
         if model.nodes_per_chirp >= radar.n_samples:
             nodes, basis = tau, np.eye(radar.n_samples)
         else:
             nodes = chebyshev_nodes_s(model.nodes_per_chirp, tau[-1])
             basis = lagrange_basis(nodes, tau)
-        position, _ = body_track(target, np.arange(n_chirps) * radar.chirp_period_s)
-        plans.append(TargetPlan(target, model, nodes, basis, float(kinematics.range_m(position).mean())))
+        plans.append(TargetPlan(target, model, nodes, basis, float(ranges.mean()), float(ranges.min())))
     return plans
 
 
