@@ -277,7 +277,8 @@ class CaptureWriter:
     straight to them with ``os.pwrite``, which, unlike h5py, releases the GIL: the simulation
     threads keep running while a chunk is written (through h5py, the writes serialised them and
     cost 2 s of a 4.5 s full-size run). Uncompressed chunks hold exactly the rows' bytes, so the
-    file is ordinary HDF5.
+    file is ordinary HDF5. No object records its creation time, so a scene and seed always give
+    the same bytes.
     """
 
     def __init__(self, path, params, n_chirps, *, creator, truth=None, chunk_rows=64):
@@ -300,7 +301,8 @@ class CaptureWriter:
             attrs["Creator"] = creator
             self._offsets = [self._allocate(h5, f"Chn{c + 1}") for c in range(params.n_channels)]
             if params.rx_positions_m:
-                h5.create_dataset("RxPosn", data=np.asarray(params.rx_positions_m, dtype=np.float64))
+                h5.create_dataset("RxPosn", data=np.asarray(params.rx_positions_m, dtype=np.float64),
+                                  track_times=False)
         self._fd = os.open(self._partial, os.O_WRONLY)
 
     def _allocate(self, h5, name):
@@ -310,6 +312,7 @@ class CaptureWriter:
         dcpl.set_chunk((self.chunk_rows, self.params.n_samples))
         dcpl.set_alloc_time(h5py.h5d.ALLOC_TIME_EARLY)
         dcpl.set_fill_time(h5py.h5d.FILL_TIME_NEVER)
+        dcpl.set_obj_track_times(False)  # no creation times: the same scene gives the same bytes
         dataset = h5py.h5d.create(h5.id, name.encode(), h5py.h5t.STD_I16LE, h5py.h5s.create_simple(shape),
                                   dcpl=dcpl)
         return [dataset.get_chunk_info_by_coord((row, 0)).byte_offset
@@ -339,7 +342,9 @@ class CaptureWriter:
             return
         if self._truth is not None:
             with h5py.File(self._partial, "r+") as h5:
-                group = h5.require_group("Truth")
+                gcpl = h5py.h5p.create(h5py.h5p.GROUP_CREATE)
+                gcpl.set_obj_track_times(False)
+                group = h5py.Group(h5py.h5g.create(h5.id, b"Truth", gcpl=gcpl))
                 group.attrs["scene_yaml"] = self._truth["scene_yaml"]
                 group.attrs["expected_json"] = json.dumps(self._truth["expected"], indent=1)
         os.replace(self._partial, self.path)
