@@ -40,10 +40,8 @@ class TargetAnalysis:
     row: dict
     spectrum: doppler.PowerSpectrum
     spectrogram: doppler.Spectrogram
-    band: spectral.Band
     paper_extent_hz: tuple = None
     flash_edges_hz: tuple = None
-    body_doppler_hz: np.ndarray = None
     notes: list = field(default_factory=list)
 
 
@@ -112,19 +110,19 @@ def _mark_aliased(row, notes, reason, *, prf_hz, wavelength_m):
 
 
 def _body_motion(s, *, prf_hz, wavelength_m, row, notes):
-    """Body Doppler and velocity when a body line exists; the echo demodulated by it (or as it is)."""
+    """Body Doppler and velocity when a body line exists; returns the echo demodulated by it (or as it is)."""
     track, prominence = body_line(s, prf_hz=prf_hz)
     if track is None:
         notes.append(f"body velocity not estimable: no body line stands out of the micro-Doppler "
                      f"({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the next line)")
-        return s, None
+        return s
     row["body_doppler_hz"] = float(np.mean(track))
     row["body_velocity_mps"] = float(range_rate_from_doppler_mps(row["body_doppler_hz"], wavelength_m=wavelength_m))
-    return doppler.demodulate(s, track, prf_hz=prf_hz), track
+    return doppler.demodulate(s, track, prf_hz=prf_hz)
 
 
 def _doppler_band(s, demodulated, *, prf_hz, wavelength_m, noise_power, params, row, notes):
-    """Occupied band, aliasing, and the paper's bandwidth. Returns (spectrum, band, extent, aliased, half-width)."""
+    """Occupied band, aliasing, and the paper's bandwidth. Returns (spectrum, extent, aliased, half-width)."""
     plain = doppler.power_spectrum(s, prf_hz=prf_hz)
     compensated = doppler.power_spectrum(demodulated, prf_hz=prf_hz)
     band = spectral.occupied_band(compensated, spectral.periodogram_noise_level(noise_power, len(s)),
@@ -149,7 +147,7 @@ def _doppler_band(s, demodulated, *, prf_hz, wavelength_m, noise_power, params, 
     if reason is not None:
         _mark_aliased(row, notes, reason, prf_hz=prf_hz, wavelength_m=wavelength_m)
         half_width_hz = prf_hz / 2
-    return plain, band, extent, reason is not None, half_width_hz
+    return plain, extent, reason is not None, half_width_hz
 
 
 def _rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, notes):
@@ -245,8 +243,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     snr = (moving - noise_power) / noise_power if noise_power > 0 else np.inf
     row = dict.fromkeys(FEATURE_KEYS)
     row["snr_db"] = float(10 * np.log10(snr)) if snr > 0 else float("-inf")
-    demodulated, track = _body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m, row=row, notes=notes)
-    plain, band, extent, aliased, half_width_hz = _doppler_band(
+    demodulated = _body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m, row=row, notes=notes)
+    plain, extent, aliased, half_width_hz = _doppler_band(
         s, demodulated, prf_hz=prf_hz, wavelength_m=wavelength_m, noise_power=noise_power, params=params,
         row=row, notes=notes)
     rate = _rotation(demodulated, aliased=aliased, half_width_hz=half_width_hz, prf_hz=prf_hz,
@@ -266,5 +264,5 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     window, hop = display_window_s(row, params)
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
     row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
-    return TargetAnalysis(row=row, spectrum=plain, spectrogram=shown, band=band, paper_extent_hz=extent,
-                          flash_edges_hz=edges, body_doppler_hz=track, notes=notes)
+    return TargetAnalysis(row=row, spectrum=plain, spectrogram=shown, paper_extent_hz=extent,
+                          flash_edges_hz=edges, notes=notes)

@@ -32,17 +32,10 @@ COVERAGE_PARTS = 4          # events must fall in every quarter of the dwell
 
 @dataclass(frozen=True)
 class FlashPeriod:
-    """Flash period with its evidence: events found, repeats fitted, the pair excess in sigmas.
-
-    ``ambiguous`` names a divisor k whose T*/k the event pairs support but the folded phases do not;
-    ``period_s`` is then T* and should not be reported as a measurement.
-    """
+    """A flash period. ``ambiguous`` names a divisor k whose T*/k the event pairs support but the folded
+    phases do not; ``period_s`` is then T* and should not be reported as a measurement."""
 
     period_s: float
-    n_events: int
-    repeats: int
-    significance: float
-    strength: float
     ambiguous: int = 0
 
 
@@ -88,7 +81,7 @@ def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s, noise_powe
     excess_longest, sigmas_longest = _pair_excess(times, longest, n)
     if sigmas_longest < PAIR_SIGMAS:
         return None
-    period, sigmas, ambiguous = longest, sigmas_longest, 0
+    period, ambiguous = longest, 0
     for divisor in range(MAX_DIVISOR, 1, -1):
         candidate = longest / divisor
         if candidate < min_period_s * prf_hz:
@@ -97,11 +90,10 @@ def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s, noise_powe
         if not all(sig >= PAIR_SIGMAS and excess >= PAIR_SHARE * excess_longest for excess, sig in tests):
             continue
         if _fold_share(times, longest, divisor) >= FOLD_SHARE:
-            period, sigmas, ambiguous = candidate, min(sig for _, sig in tests), 0
+            period, ambiguous = candidate, 0
             break
         ambiguous = ambiguous or divisor
-    return FlashPeriod(period_s=period / prf_hz, n_events=len(times), repeats=found.repeats,
-                       significance=float(sigmas), strength=found.strength, ambiguous=ambiguous)
+    return FlashPeriod(period_s=period / prf_hz, ambiguous=ambiguous)
 
 
 def _fold_share(times, period, divisor):

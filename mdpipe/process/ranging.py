@@ -94,8 +94,6 @@ class GateStatistics:
         Channel covariance of the moving part of each gate bin.
     chunk_power : ndarray (n_chunks, B)
         Moving power (about the chunk's own mean) of each gate bin in each chunk, summed over channels.
-    chunk_t_s : ndarray (n_chunks,)
-        Centre time of each chunk.
     n_chirps : int
         Chirps in the capture.
     clipped_fraction : float
@@ -109,7 +107,6 @@ class GateStatistics:
     mean: np.ndarray
     covariance: np.ndarray
     chunk_power: np.ndarray
-    chunk_t_s: np.ndarray
     n_chirps: int
     clipped_fraction: float = 0.0
 
@@ -179,11 +176,10 @@ def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_r
     moving = power * (scale ** 2 / (n * n_ch)) - static
     gmean = mean[gate]
     covariance = cross * (scale ** 2 / n) - gmean[:, :, None] * gmean[:, None, :].conj()
-    chunk_t = np.array([(first + 0.5 * r) * params.chirp_period_s for first, r in zip(firsts, rows)])
     return GateStatistics(range_m=ranges, static_power=static, moving_power=np.maximum(moving, 0.0), gate_bins=gate,
                           mean=gmean, covariance=covariance,
                           chunk_power=np.array(chunk_power).reshape(-1, len(gate)) * scale ** 2,
-                          chunk_t_s=chunk_t, n_chirps=reader.n_chirps, clipped_fraction=clipped / counted)
+                          n_chirps=reader.n_chirps, clipped_fraction=clipped / counted)
 
 
 def slow_time(reader, bins, weights, *, window="hann", zero_pad=1, chunk_chirps=READ_CHIRPS, dtype="float32",
