@@ -48,6 +48,13 @@ def periodic_hann(n):
     return np.hanning(n + 1)[:-1]
 
 
+def noise_level_per_bin(noise_power, n_window):
+    """Expected power per bin of white noise of variance ``noise_power`` in a Hann spectrum of ``n_window``
+    samples scaled as :func:`spectrogram` and :func:`power_spectrum` are (a tone of amplitude a gives a^2)."""
+    window = periodic_hann(n_window)
+    return noise_power * np.sum(window ** 2) / np.sum(window) ** 2
+
+
 def spectrogram(signal, *, prf_hz, window_s, hop_s):
     """Short-time power spectrum of a complex slow-time ``signal`` (Hann window).
 

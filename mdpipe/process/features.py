@@ -125,7 +125,7 @@ def _doppler_band(s, demodulated, *, prf_hz, wavelength_m, noise_power, params, 
     """Occupied band, aliasing, and the paper's bandwidth. Returns (spectrum, extent, aliased, half-width)."""
     plain = doppler.power_spectrum(s, prf_hz=prf_hz)
     compensated = doppler.power_spectrum(demodulated, prf_hz=prf_hz)
-    band = spectral.occupied_band(compensated, spectral.periodogram_noise_level(noise_power, len(s)),
+    band = spectral.occupied_band(compensated, doppler.noise_level_per_bin(noise_power, len(s)),
                                   smooth_hz=max(prf_hz / 200, 4 * compensated.resolution_hz))
     extent = spectral.paper_extent(plain, threshold_db=params.threshold_db)
     half_width_hz = max(abs(band.low_hz), abs(band.high_hz), 0.0)

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mdpipe.process.doppler import spectrogram
+from mdpipe.process.doppler import noise_level_per_bin, spectrogram
 from mdpipe.process.filters import moving_average
 
 OCCUPIED_DB = 10.0        # micro-Doppler "present" this far above the noise level
@@ -26,12 +26,6 @@ class Band:
     fraction: float
     aliased: bool
     reason: str
-
-
-def periodogram_noise_level(noise_power, n):
-    """Expected per-bin power of white noise of variance ``noise_power`` in :func:`power_spectrum` (Hann)."""
-    window = np.hanning(n + 1)[:-1]
-    return noise_power * np.sum(window ** 2) / np.sum(window) ** 2
 
 
 def occupied_band(spectrum, noise_level, *, smooth_hz):
@@ -106,8 +100,7 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop
     """
     spec = spectrogram(signal, prf_hz=prf_hz, window_s=window_s, hop_s=window_s * hop_fraction)
     power, f = spec.power, spec.f_hz
-    window = np.hanning(int(round(spec.window_s * prf_hz)) + 1)[:-1]
-    noise_level = noise_power * np.sum(window ** 2) / np.sum(window) ** 2
+    noise_level = noise_level_per_bin(noise_power, int(round(spec.window_s * prf_hz)))
     if differenced:
         response = (2 * np.sin(np.pi * f / prf_hz)) ** 2
         near_zero = np.abs(f) <= 2 * (f[1] - f[0])

@@ -8,7 +8,7 @@ is then found as for rotors (:mod:`mdpipe.process.periodicity`).
 """
 
 import numpy as np
-from mdpipe.process.doppler import spectrogram
+from mdpipe.process.doppler import noise_level_per_bin, spectrogram
 from mdpipe.process.filters import moving_average
 from mdpipe.process.periodicity import period_from_autocorrelation
 
@@ -47,8 +47,7 @@ def wingbeat(demodulated, *, prf_hz, noise_power):
     hop_s = HOP_S * frame_s / FRAME_S
     spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=hop_s)
     frame_rate = 1.0 / spec.hop_s
-    window = np.hanning(int(round(spec.window_s * prf_hz)) + 1)[:-1]
-    noise_level = noise_power * np.sum(window ** 2) / np.sum(window) ** 2
+    noise_level = noise_level_per_bin(noise_power, int(round(spec.window_s * prf_hz)))
     r = pattern_autocorrelation(spec, detrend_frames=int(2 * frame_rate / MIN_WINGBEAT_HZ), noise_level=noise_level)
     return period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
                                        max_period_s=1.0 / MIN_WINGBEAT_HZ)
