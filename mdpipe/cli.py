@@ -21,6 +21,23 @@ class InputError(click.ClickException):
     exit_code = 2
 
 
+class BladeCount(click.ParamType):
+    """``auto`` (None) or a whole number of blades >= 1."""
+
+    name = "auto|N"
+
+    def convert(self, value, param, ctx):
+        if value is None or value == "auto":
+            return None
+        try:
+            count = int(value)
+        except (TypeError, ValueError):
+            count = 0
+        if count < 1 or str(count) != str(value).strip():
+            self.fail(f"{value!r} is neither auto nor a whole number of blades >= 1", param, ctx)
+        return count
+
+
 class Group(click.Group):
     """Turns :class:`MdpipeError` into a one-line message and exit code 2, with no traceback."""
 
@@ -167,8 +184,8 @@ def info(capture, as_json, **options):
 @click.option("--max-targets", type=click.IntRange(min=1), default=ProcessParams.max_targets, show_default=True)
 @click.option("--elevation-deg", type=float, default=ProcessParams.elevation_deg, show_default=True,
               help="Elevation beta of the rotor plane (Eq. 6).")
-@click.option("--blades", "n_blades", type=click.IntRange(min=1), default=ProcessParams.n_blades, show_default=True,
-              help="Blades per rotor (N).")
+@click.option("--blades", "n_blades", type=BladeCount(), default="auto", show_default=True,
+              help="Blades per rotor (N), or auto: measured where the echo tells it, else assumed and said so.")
 @click.option("--threshold-db", type=float, default=ProcessParams.threshold_db, show_default=True,
               help="The paper's bandwidth rule: spectrum above its mean by this much.")
 @click.option("--range-window", type=click.Choice(RANGE_WINDOWS), default=ProcessParams.range_window, show_default=True)

@@ -168,8 +168,9 @@ class ProcessParams:
         A bin is a target when its moving power exceeds the gate's noise level by this much.
     elevation_deg : float
         Elevation beta of the rotor plane (Eq. 6), for the blade-length inversion.
-    n_blades : int
-        Blades per rotor (N), for rotation rate = chopping frequency / N.
+    n_blades : int or None
+        Blades per rotor (N), for rotation rate = chopping frequency / N; None: measured from the echo
+        where it tells (blade imbalance, odd-N flash doubling), else assumed and said so.
     threshold_db : float
         The paper's bandwidth rule: spectrum above its mean by this many dB.
     range_window, zero_pad : str, int
@@ -194,7 +195,7 @@ class ProcessParams:
     max_targets: int = 4
     detection_db: float = 12.0
     elevation_deg: float = 0.0
-    n_blades: int = 2
+    n_blades: Optional[int] = None
     threshold_db: float = 20.0
     range_window: str = "hann"
     zero_pad: int = 1
@@ -214,7 +215,7 @@ class ProcessParams:
             require_positive(range_m=self.range_m)
         if not -90 <= self.elevation_deg <= 90:
             raise ParameterError(f"elevation_deg={self.elevation_deg!r} must lie in [-90, 90]")
-        if int(self.n_blades) != self.n_blades or self.n_blades < 1:
+        if self.n_blades is not None and (int(self.n_blades) != self.n_blades or self.n_blades < 1):
             raise ParameterError(f"n_blades={self.n_blades!r} must be an integer >= 1")
         if int(self.max_targets) != self.max_targets or self.max_targets < 1:
             raise ParameterError(f"max_targets={self.max_targets!r} must be an integer >= 1")

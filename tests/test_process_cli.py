@@ -56,8 +56,11 @@ def test_parameters_reach_the_output(tmp_path):
     record = json.loads(result.stdout)
     assert record["n_blades"] == 3 and record["elevation_deg"] == 30 and record["threshold_db"] == 15
     assert record["stft_window_s"] == pytest.approx(0.004, rel=0.02)
-    # N = 3 turns the same 140 Hz chopping into 46.7 rev/s; r scales with 1/(f_rot cos(beta))
-    assert record["rotation_rate_hz"] == pytest.approx(140.0 / 3, rel=0.005)
+    # the Phantom's 2 blades flash once per chopping period: an odd N = 3 contradicts the echo, so the
+    # 140 Hz chopping stands but no rotation rate (nor r) is derived from the wrong count
+    assert record["chopping_freq_hz"] == pytest.approx(140.0, rel=0.005)
+    assert record["rotation_rate_hz"] is None and record["rotation_rate_hz_status"] == "blade_conflict"
+    assert record["blade_length_m"] is None and record["blade_length_m_status"] == "no_rotation"
     assert not list(tmp_path.glob("*.png"))
 
 

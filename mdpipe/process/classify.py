@@ -1,15 +1,19 @@
 """drone / bird / none, from wavelength-independent quantities: periodicity rates and spreads in m/s.
 
 A rotor's blade tips move at 20-150 m/s and flash 50-2000 times a second; a bird's wing tips
-move at a few m/s and beat 0.3-20 times a second. So one rule serves X band and 76 GHz:
+move at a few m/s and beat 0.3-20 times a second; a swaying branch or a leaf moves at tenths of a
+m/s. So one rule serves X band and 94 GHz:
 
-* drone: periodic blade flashes, or a micro-Doppler half-width above ``DRONE_SPREAD_MPS``
-  (an aliased band counts as at least half the unambiguous span);
-* bird: a wingbeat with a half-width below ``DRONE_SPREAD_MPS``;
-* none: nothing moving above the noise, or neither signature.
+* drone: a blade line comb (a chopping frequency measured), or a micro-Doppler half-width above
+  ``DRONE_SPREAD_MPS`` (an aliased band counts as at least half the unambiguous span);
+* bird: a wingbeat with a half-width between ``MIN_WING_SPREAD_MPS`` and ``DRONE_SPREAD_MPS``
+  (about the body line, or the band's centre when no body line stands out);
+* none: nothing moving above the noise, or neither signature (a branch swaying in the wind repeats
+  too, but its micro-Doppler stays below ``MIN_WING_SPREAD_MPS``).
 """
 
 DRONE_SPREAD_MPS = 10.0
+MIN_WING_SPREAD_MPS = 1.0
 
 
 def classify(row, *, detected):
@@ -17,10 +21,13 @@ def classify(row, *, detected):
     if not detected:
         return "none", "no moving target above the noise"
     spread = row.get("micro_doppler_halfwidth_mps")
-    if row.get("rotation_rate_hz") is not None:
-        return "drone", f"periodic blade flashes at {row['chopping_freq_hz']:.1f} Hz"
+    if row.get("chopping_freq_hz") is not None:
+        return "drone", f"blade line comb at {row['chopping_freq_hz']:.1f} Hz"
     if spread is not None and spread > DRONE_SPREAD_MPS:
         return "drone", f"micro-Doppler half-width {spread:.1f} m/s > {DRONE_SPREAD_MPS:g} m/s"
     if row.get("wingbeat_freq_hz") is not None:
+        if spread is not None and spread < MIN_WING_SPREAD_MPS:
+            return "none", (f"repeating, but a micro-Doppler half-width of {spread:.2f} m/s is too narrow for wings "
+                            f"(< {MIN_WING_SPREAD_MPS:g} m/s: swaying clutter)")
         return "bird", f"wingbeat {row['wingbeat_freq_hz']:.2f} Hz, half-width {spread or 0:.1f} m/s"
     return "none", "moving, but neither blade flashes nor a wingbeat"

@@ -97,15 +97,16 @@ def power_spectrum(signal, *, prf_hz):
     return PowerSpectrum(power=np.abs(spectrum) ** 2, f_hz=np.fft.fftshift(np.fft.fftfreq(n, 1.0 / prf_hz)))
 
 
-def peak_track_hz(spec, *, n_chirps, prf_hz):
+def peak_track_hz(spec, *, n_chirps, prf_hz, smooth_frames=5):
     """Doppler of the strongest line of each frame of ``spec`` (the body), at each of ``n_chirps`` chirps.
 
     Per frame the peak of the spectrum is refined by a parabola through its neighbours; the track is
-    median-filtered over 5 frames and interpolated to the chirps.
+    median-filtered over ``smooth_frames`` frames and interpolated to the chirps (``n_chirps`` None:
+    one value per frame).
 
     Returns
     -------
-    ndarray (n_chirps,), Hz
+    ndarray (n_chirps,) or (n_frames,), Hz
     """
     log_power = np.log(spec.power + np.finfo(float).tiny)
     peak = np.argmax(spec.power, axis=0)
@@ -114,7 +115,9 @@ def peak_track_hz(spec, *, n_chirps, prf_hz):
     curvature = left - 2 * mid + right
     shift = np.where(curvature < 0, 0.5 * (left - right) / np.where(curvature < 0, curvature, -1), 0.0)
     f_peak = spec.f_hz[inner] + np.clip(shift, -0.5, 0.5) * (spec.f_hz[1] - spec.f_hz[0])
-    f_peak = running_median(f_peak, min(5, len(f_peak)) | 1)
+    f_peak = running_median(f_peak, min(smooth_frames, len(f_peak)) | 1)
+    if n_chirps is None:
+        return f_peak
     return np.interp(np.arange(n_chirps) / prf_hz, spec.t_s, f_peak)
 
 

@@ -1,7 +1,9 @@
-"""Features of one target's slow-time echo, each with a reason when it cannot be measured.
+"""Features of one target's slow-time echo, each a value with its validity (:mod:`mdpipe.process.validity`).
 
 Conventions: Doppler in Hz with the paper's sign (approaching positive); velocities in m/s,
 positive receding; every inversion uses :mod:`mdpipe.physics`, the functions the simulator uses.
+Each measurement is one function returning :class:`~mdpipe.process.validity.Measured` values;
+:func:`analyse_target` puts them in the row.
 """
 
 from dataclasses import dataclass, field
@@ -10,13 +12,16 @@ import numpy as np
 
 from mdpipe.physics import rotor
 from mdpipe.physics.radar import range_rate_from_doppler_mps
-from mdpipe.process import doppler, spectral
+from mdpipe.process import combs, doppler, spectral
 from mdpipe.process.flashes import flash_period
 from mdpipe.process.periodicity import find_period
+from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeat
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame
 BODY_FRAME_S = 0.032
+BODY_STEADY_SHARE = 0.5      # frames whose strongest line lies on the smoothed body track
+BODY_TRACK_FRAMES = 9        # running median of the body track (rotor lines win single frames)
 MIN_REV_PER_S, MAX_REV_PER_S = 10.0, 500.0
 MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
 FLASHES_PER_WINDOW = 1.5     # flash main lobes the edge window must hold: Gamma >= 24 for N = 2 (config 4: 26.7)
@@ -24,13 +29,27 @@ MIN_PERIODICITY = 0.2        # wingbeat autocorrelation prominence needed
 MIN_ROTOR_PERIODICITY = 0.6  # a rotor's echo repeats almost exactly (measured 0.93-0.95; a gull's best: 0.40)
 HIGHPASS_SHARE = 0.25        # body removal for unaliased echoes: cut below this share of the band's half-width
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
+AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
+MIN_BLADE_REACH_M = 0.005    # r cos(beta) below this is no blade: a comb that narrow is not a rotor
+BANDWIDTH_SEGMENT_S = 0.25   # the paper's rule on segments of this length (its value depends on the dwell)
+ASSUMED_EVEN_BLADES, ASSUMED_ODD_BLADES = 2, 3
 
-
-FEATURE_KEYS = ("snr_db", "doppler_bw_hz", "doppler_bw_mps", "doppler_low_hz", "doppler_high_hz",
-                "doppler_bw_spectrogram_hz", "chopping_freq_hz", "rotation_rate_hz", "rotation_period_s",
-                "flash_period_s", "blade_length_m", "tip_doppler_hz", "body_doppler_hz", "body_velocity_mps",
-                "wingbeat_freq_hz", "wingbeat_period_s", "micro_doppler_halfwidth_mps", "aliased",
-                "stft_window_s", "stft_hop_s")
+# Each measured quantity and the columns derived from it, which share its status.
+FEATURE_GROUPS = {
+    "snr_db": (),
+    "micro_doppler_halfwidth_mps": (),
+    "doppler_bw_hz": ("doppler_bw_mps", "doppler_low_hz", "doppler_high_hz"),
+    "chopping_freq_hz": (),
+    "rotation_rate_hz": ("rotation_period_s", "flash_period_s", "rotor_rates_hz"),
+    "doppler_bw_spectrogram_hz": ("tip_doppler_hz",),
+    "blade_length_m": (),
+    "body_velocity_mps": ("body_doppler_hz",),
+    "wingbeat_freq_hz": ("wingbeat_period_s",),
+}
+VALUE_KEYS = tuple(key for primary, derived in FEATURE_GROUPS.items() for key in (primary, *derived))
+STATUS_KEYS = tuple(f"{key}_status" for key in VALUE_KEYS)
+FEATURE_KEYS = VALUE_KEYS + ("aliased", "n_rotors", "n_blades", "n_blades_source", "stft_window_s", "stft_hop_s") \
+    + STATUS_KEYS
 
 
 @dataclass
@@ -45,12 +64,24 @@ class TargetAnalysis:
     notes: list = field(default_factory=list)
 
 
-def body_line(signal, *, prf_hz):
-    """Body Doppler at every chirp when a body line stands out, and its median prominence (dB).
+@dataclass(frozen=True)
+class BodyMotion:
+    """The body's Doppler track (None without a body line), its velocity, and the echo demodulated by it."""
 
-    Per 32 ms frame the strongest line must stand ``BODY_LINE_DB`` above the strongest line more
-    than two bins away; otherwise (rotating parts only, or phase-locked rotors whose interference
-    skews the spectrum) there is no body line and the track is None.
+    track_hz: object
+    velocity: Measured
+    demodulated: np.ndarray
+
+
+def body_motion(signal, *, prf_hz, wavelength_m):
+    """Body Doppler and velocity from the strongest line of each 32 ms frame, when a body line exists.
+
+    Per frame the strongest line must stand ``BODY_LINE_DB`` above the strongest line more than two
+    bins away (median over frames); otherwise (rotating parts only, or phase-locked rotors whose
+    interference skews the spectrum) there is no body line. The track is the running median of the
+    frame peaks over ``BODY_TRACK_FRAMES`` frames, so a frame where a rotor line outshines the body
+    does not move it; if fewer than ``BODY_STEADY_SHARE`` of the frames peak on the track, the body
+    is not steady enough to demodulate. The velocity is the median of the track.
     """
     frame_s = min(BODY_FRAME_S, len(signal) / prf_hz)
     spec = doppler.spectrogram(signal, prf_hz=prf_hz, window_s=frame_s, hop_s=frame_s / 4)
@@ -62,8 +93,18 @@ def body_line(signal, *, prf_hz):
     ratio_db = 10 * np.log10(power.max(axis=0) / np.maximum(masked.max(axis=0), np.finfo(float).tiny))
     prominence = float(np.median(ratio_db))
     if prominence < BODY_LINE_DB:
-        return None, prominence
-    return doppler.peak_track_hz(spec, n_chirps=len(signal), prf_hz=prf_hz), prominence
+        return BodyMotion(None, withheld("no_body_line", f"body velocity not estimable: no body line stands out of "
+                                         f"the micro-Doppler ({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the "
+                                         "next line)"), signal)
+    frame_track = doppler.peak_track_hz(spec, n_chirps=None, prf_hz=prf_hz, smooth_frames=BODY_TRACK_FRAMES)
+    bin_hz = spec.f_hz[1] - spec.f_hz[0]
+    on_track = float(np.mean(np.abs(spec.f_hz[peak] - frame_track) <= 2 * bin_hz))
+    if on_track < BODY_STEADY_SHARE:
+        return BodyMotion(None, withheld("body_unsteady", f"body velocity not estimable: the strongest line lies on "
+                                         f"the body track in only {on_track:.0%} of the frames"), signal)
+    track = np.interp(np.arange(len(signal)) / prf_hz, spec.t_s, frame_track)
+    velocity = float(range_rate_from_doppler_mps(float(np.median(track)), wavelength_m=wavelength_m))
+    return BodyMotion(track, Measured(velocity), doppler.demodulate(signal, track, prf_hz=prf_hz))
 
 
 def highpass(signal, *, prf_hz, cutoff_hz):
@@ -102,41 +143,27 @@ def _speed_mps(doppler_hz_, wavelength_m):
     return float(-range_rate_from_doppler_mps(doppler_hz_, wavelength_m=wavelength_m))
 
 
-def _mark_aliased(row, notes, reason, *, prf_hz, wavelength_m):
-    """Withhold what aliasing makes unmeasurable, and say why."""
-    row["doppler_bw_hz"] = row["doppler_bw_mps"] = row["doppler_low_hz"] = row["doppler_high_hz"] = None
-    row["micro_doppler_halfwidth_mps"] = _speed_mps(prf_hz / 2, wavelength_m)
-    notes.append(f"Doppler bandwidth and blade length not estimable: aliased ({reason})")
+@dataclass(frozen=True)
+class DopplerBand:
+    """The dwell spectrum (for the figures), the micro-Doppler half-width about its centre, aliasing and why."""
+
+    spectrum: doppler.PowerSpectrum
+    half_width_hz: float
+    aliased: bool
+    halfwidth: Measured
 
 
-def _body_motion(s, *, prf_hz, wavelength_m, row, notes):
-    """Body Doppler and velocity when a body line exists; returns the echo demodulated by it (or as it is)."""
-    track, prominence = body_line(s, prf_hz=prf_hz)
-    if track is None:
-        notes.append(f"body velocity not estimable: no body line stands out of the micro-Doppler "
-                     f"({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the next line)")
-        return s
-    row["body_doppler_hz"] = float(np.mean(track))
-    row["body_velocity_mps"] = float(range_rate_from_doppler_mps(row["body_doppler_hz"], wavelength_m=wavelength_m))
-    return doppler.demodulate(s, track, prf_hz=prf_hz)
+def doppler_band(signal, demodulated, *, prf_hz, wavelength_m, noise_power):
+    """Occupied micro-Doppler band of the body-demodulated echo and whether it aliases.
 
-
-def _doppler_band(s, demodulated, *, prf_hz, wavelength_m, noise_power, params, row, notes):
-    """Occupied band, aliasing, and the paper's bandwidth. Returns (spectrum, extent, aliased, half-width)."""
-    plain = doppler.power_spectrum(s, prf_hz=prf_hz)
+    The half-width is taken about the band's centre, so a bird's own flight speed does not count when
+    no body line was found to demodulate. Aliased (the half-width then only a lower bound, ``PRF / 2``):
+    the band fills the span or reaches both ends, or the brightest 64-chirp frames fill it.
+    """
+    plain = doppler.power_spectrum(signal, prf_hz=prf_hz)
     compensated = doppler.power_spectrum(demodulated, prf_hz=prf_hz)
-    band = spectral.occupied_band(compensated, doppler.noise_level_per_bin(noise_power, len(s)),
+    band = spectral.occupied_band(compensated, doppler.noise_level_per_bin(noise_power, len(signal)),
                                   smooth_hz=max(prf_hz / 200, 4 * compensated.resolution_hz))
-    extent = spectral.paper_extent(plain, threshold_db=params.threshold_db)
-    half_width_hz = max(abs(band.low_hz), abs(band.high_hz), 0.0)
-    if np.isfinite(half_width_hz):
-        row["micro_doppler_halfwidth_mps"] = _speed_mps(half_width_hz, wavelength_m)
-    if extent is None:
-        notes.append(f"Doppler bandwidth not estimable: nothing {params.threshold_db:g} dB above the spectrum's mean")
-    else:
-        row["doppler_low_hz"], row["doppler_high_hz"] = extent
-        row["doppler_bw_hz"] = extent[1] - extent[0]
-        row["doppler_bw_mps"] = float(row["doppler_bw_hz"] * wavelength_m / 2)
     reason = band.reason if band.aliased else None
     if reason is None:
         strobe = spectral.flash_edges(difference(demodulated), prf_hz=prf_hz, window_s=ALIAS_CHECK_CHIRPS / prf_hz,
@@ -145,83 +172,229 @@ def _doppler_band(s, demodulated, *, prf_hz, wavelength_m, noise_power, params, 
             reason = (f"the brightest frames fill the span 1/Tp = {prf_hz:.0f} Hz in {strobe.n_filled} of "
                       f"{strobe.n_frames}")
     if reason is not None:
-        _mark_aliased(row, notes, reason, prf_hz=prf_hz, wavelength_m=wavelength_m)
-        half_width_hz = prf_hz / 2
-    return plain, extent, reason is not None, half_width_hz
+        return DopplerBand(plain, prf_hz / 2, True,
+                           Measured(_speed_mps(prf_hz / 2, wavelength_m), "aliased",
+                                    f"micro-Doppler half-width at least the span's: aliased ({reason})"))
+    if not np.isfinite(band.low_hz):
+        return DopplerBand(plain, 0.0, False, withheld("no_signal", "no micro-Doppler band 10 dB above the noise"))
+    half_width_hz = (band.high_hz - band.low_hz) / 2
+    return DopplerBand(plain, half_width_hz, False, Measured(_speed_mps(half_width_hz, wavelength_m)))
 
 
-def _rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, notes):
-    """Rotation rate (rev/s) from the blade flashes, or None with the reason in ``notes``.
+def paper_bandwidth(demodulated, *, prf_hz, threshold_db, body_doppler_hz, aliased):
+    """The paper's bandwidth rule on ``BANDWIDTH_SEGMENT_S`` segments; returns (Measured, (low_hz, high_hz)).
 
-    A flash is about as long as the inverse of its Doppler width, so flashes are shorter than a
-    chirp interval exactly when the micro-Doppler aliases. Unaliased (well-sampled flashes): the
-    body-free echo repeats every 1/(N f_rot) for even and odd N. Aliased (stroboscopic flashes):
-    flash timing on the first difference of the echo.
+    The rule (spectrum above its mean by ``threshold_db``) applied to a whole dwell depends on the
+    dwell: the mean falls as lines sharpen (a 10 s dwell of a drone gave 1-2 Hz where 1.5 s pieces gave
+    1.8 kHz). On fixed-length segments of the body-demodulated echo it is one defined measurement;
+    the median of the segments' edges is reported, shifted back by the body Doppler. Withheld when
+    only the body line crosses the threshold.
     """
-    max_period = 1.0 / (rotor.flashes_per_revolution(n_blades) * MIN_REV_PER_S)
     if aliased:
-        found = flash_period(difference(demodulated), prf_hz=prf_hz,
-                             min_period_s=1.0 / (rotor.flashes_per_revolution(n_blades) * MAX_REV_PER_S),
-                             max_period_s=max_period, noise_power=2 * noise_power)  # a difference doubles noise
-        if found is not None and found.ambiguous:
-            notes.append(f"rotation not estimable: the flash times fit {found.period_s * 1e3:.3g} ms and, by their "
-                         f"pairs, {found.period_s * 1e3 / found.ambiguous:.3g} ms (flashes shorter than a chirp are "
-                         f"sampled stroboscopically; a longer dwell or a higher PRF tells them apart)")
-            return None
-        rate = None if found is None else rotor.rotation_rate_from_flash_period_hz(found.period_s, n_blades=n_blades)
+        return withheld("aliased", "Doppler bandwidth not estimable: aliased"), None
+    n = int(round(BANDWIDTH_SEGMENT_S * prf_hz))
+    if len(demodulated) < n:
+        return withheld("dwell_short", f"Doppler bandwidth not estimable: the paper's rule is applied to "
+                        f"{BANDWIDTH_SEGMENT_S:g} s segments, longer than the dwell"), None
+    extents = [spectral.paper_extent(doppler.power_spectrum(demodulated[start:start + n], prf_hz=prf_hz),
+                                     threshold_db=threshold_db)
+               for start in range(0, len(demodulated) - n + 1, n // 2)]
+    extents = [e for e in extents if e is not None]
+    if not extents:
+        return withheld("below_threshold", f"Doppler bandwidth not estimable: nothing {threshold_db:g} dB above "
+                        "the spectrum's mean"), None
+    low, high = np.median(extents, axis=0)
+    if high - low <= 4 * prf_hz / n:  # the body line's Hann main lobe
+        return withheld("body_only", f"Doppler bandwidth not estimable: only the body line stands {threshold_db:g} dB "
+                        "above the spectrum's mean"), None
+    return Measured(float(high - low)), (float(low + body_doppler_hz), float(high + body_doppler_hz))
+
+
+@dataclass(frozen=True)
+class Rotation:
+    """Chopping frequency, rotation rate (with the blade count it rests on) and the rotors resolved."""
+
+    chopping: Measured
+    rate: Measured
+    rotor_rates_hz: tuple = ()
+    n_blades: int = None
+    n_blades_source: str = None
+
+
+def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noise_power):
+    """Chopping (unaliased: the echo's period) or flash rate (aliased: flash timing) in Hz, None, or an ambiguity.
+
+    Returns (frequency_hz or None, note): a note names an ambiguity the flash times could not settle.
+    """
+    if aliased:
+        found = flash_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ,
+                             max_period_s=1.0 / combs.MIN_CHOP_HZ, noise_power=2 * noise_power)  # a difference doubles noise
+        if found is None:
+            return None, None
+        if found.ambiguous:
+            return None, (f"the flash times fit {found.period_s * 1e3:.3g} ms and, by their pairs, "
+                          f"{found.period_s * 1e3 / found.ambiguous:.3g} ms (flashes shorter than a chirp are sampled "
+                          "stroboscopically; a longer dwell or a higher PRF tells them apart)")
+        return 1.0 / found.period_s, None
+    micro = highpass(demodulated, prf_hz=prf_hz, cutoff_hz=HIGHPASS_SHARE * half_width_hz)
+    found = find_period(micro, sample_rate_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ,
+                        max_period_s=1.0 / combs.MIN_CHOP_HZ)
+    if found is None or found.strength < MIN_ROTOR_PERIODICITY:
+        return None, None
+    return 1.0 / found.period_s, None
+
+
+def _whole_ratio(ratio):
+    """The whole number k (2..6) with ratio ~ k or 1/k, else 0."""
+    for k in range(2, 7):
+        if abs(ratio / k - 1) <= AGREEMENT or abs(ratio * k - 1) <= AGREEMENT:
+            return k
+    return 0
+
+
+def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, halfwidth_mps):
+    """Rotation of the rotors from their line combs and from the echo's period (or flash times when aliased).
+
+    * The combs (:mod:`mdpipe.process.combs`) give each resolvable rotor's chopping frequency ``N f_i``.
+    * The time domain gives the echo's period (well-sampled flashes) or the flash period (aliased:
+      flashes shorter than a chirp, seen stroboscopically).
+    When both are found they must agree within ``AGREEMENT`` (the time domain then refines a single
+    rotor's value: it averages over the whole dwell); a whole-number ratio is an ambiguity and
+    nothing is reported. A comb narrower in Doppler than any blade turning that fast could make
+    (``r cos(beta) < MIN_BLADE_REACH_M``) is not a rotor.
+    Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines,
+    odd-N flash doubling), else assumed.
+    """
+    if dwell_s < 2.0 / combs.MIN_CHOP_HZ:
+        note = (f"rotation not estimable: dwell {dwell_s:.3g} s is shorter than two flash periods of the slowest "
+                f"rotor searched ({2.0 / combs.MIN_CHOP_HZ:.3g} s)")
+        return Rotation(withheld("dwell_short", note), withheld("dwell_short", note))
+    band_hz = prf_hz / 2 if aliased else half_width_hz
+    micro = demodulated - np.mean(demodulated)  # the body, demodulated to 0 Hz; combs score lines from f_chop up
+    comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz)
+    timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
+                                                   prf_hz=prf_hz, noise_power=noise_power)
+    if ambiguity is not None and comb is None:
+        note = f"rotation not estimable: {ambiguity}"
+        return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+    chopping_hz = np.array(comb.chopping_hz) if comb is not None else None
+    if chopping_hz is not None and timed_hz is not None:
+        centre = float(np.median(chopping_hz))
+        ratio = timed_hz / centre
+        if aliased and abs(ratio / 2 - 1) <= AGREEMENT:  # odd N: the flash rate is twice the chopping frequency
+            timed_hz, ratio = timed_hz / 2, ratio / 2
+        if abs(ratio - 1) <= AGREEMENT:
+            if len(chopping_hz) == 1:
+                chopping_hz = np.array([timed_hz])
+        elif aliased and not _whole_ratio(ratio):  # folded combs coincide by chance; flash times do not
+            chopping_hz = np.array([timed_hz])
+        else:
+            note = (f"rotation not estimable: the line comb says {centre:.4g} Hz and the echo's "
+                    f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
+            return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+    elif timed_hz is not None:
+        chopping_hz = np.array([timed_hz])
+    if chopping_hz is None:
+        note = "rotation not estimable: no periodic blade flashes"
+        return Rotation(withheld("no_flashes", note), withheld("no_flashes", note))
+    fastest_mps = 2 * np.pi * float(chopping_hz.max()) * MIN_BLADE_REACH_M
+    if not aliased and halfwidth_mps is not None and halfwidth_mps < fastest_mps:
+        note = (f"rotation not estimable: a comb at {np.median(chopping_hz):.4g} Hz in a micro-Doppler only "
+                f"{halfwidth_mps:.2g} m/s wide is no rotor (blades turning that fast reach >= {fastest_mps:.2g} m/s)")
+        return Rotation(withheld("not_rotor", note), withheld("not_rotor", note))
+    chopping = Measured(float(np.median(chopping_hz)))
+    blades, source, conflict = _blade_count(micro, float(chopping_hz[0]), n_blades=n_blades, aliased=aliased,
+                                            prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz)
+    if conflict:
+        return Rotation(chopping, withheld("blade_conflict", f"rotation not estimable: {conflict}"),
+                        n_blades=blades, n_blades_source=source)
+    rates = tuple(sorted(float(rotor.rotation_rate_from_chopping_hz(c, n_blades=blades)) for c in chopping_hz))
+    rate = float(np.median(rates))
+    if source == "assumed":
+        status = Measured(rate, "assumed_blades", f"rotation rate assumes N = {blades} blades (the echo does not tell "
+                          "the blade count; give --blades)")
     else:
-        micro = highpass(demodulated, prf_hz=prf_hz, cutoff_hz=HIGHPASS_SHARE * half_width_hz)
-        found = find_period(micro, sample_rate_hz=prf_hz, min_period_s=1.0 / (n_blades * MAX_REV_PER_S),
-                            max_period_s=1.0 / (n_blades * MIN_REV_PER_S))
-        if found is not None and found.strength < MIN_ROTOR_PERIODICITY:
-            found = None
-        rate = None if found is None else rotor.rotation_rate_from_chopping_hz(1.0 / found.period_s, n_blades=n_blades)
-    if rate is None:
-        notes.append(f"rotation not estimable: dwell {dwell_s:.3g} s is shorter than two flash periods of the slowest "
-                     f"rotor searched ({2 * max_period:.3g} s)" if dwell_s < 2 * max_period
-                     else "no periodic blade flashes")
-        return None
-    return float(rate)
+        status = Measured(rate)
+    return Rotation(chopping, status, rates, blades, source)
 
 
-def _blade_length(demodulated, *, rate_hz, prf_hz, wavelength_m, noise_power, params, row, notes):
-    """Tip Doppler from the flash edges, and r by inverting Eq. 6. Returns the edges (or None).
+def _blade_count(micro, chopping_hz, *, n_blades, aliased, prf_hz, noise_power, band_hz):
+    """(N, source, conflict sentence or None): given, measured from the echo, or assumed."""
+    measured = parity = None
+    if not aliased:  # folded lines hide the imbalance lines and the envelope's parity
+        measured = combs.blade_count_from_sublines(micro, chopping_hz, prf_hz=prf_hz, noise_power=noise_power,
+                                                   half_width_hz=band_hz)
+        parity = combs.odd_blades(micro, chopping_hz, prf_hz=prf_hz, half_width_hz=band_hz)
+    if n_blades is not None:
+        if measured is not None and measured != n_blades:
+            return n_blades, "given", (f"{n_blades} blades given, but lines between the chopping lines show "
+                                       f"{measured} blades of unequal reflectivity")
+        if parity is not None and parity != bool(n_blades % 2):
+            return n_blades, "given", (f"{n_blades} blades given, but the flashes come "
+                                       f"{'twice' if parity else 'once'} per chopping period "
+                                       f"({'odd' if parity else 'even'} N)")
+        return n_blades, "given", None
+    if measured is not None:
+        return measured, "measured", None
+    return (ASSUMED_ODD_BLADES if parity else ASSUMED_EVEN_BLADES), "assumed", None
 
+
+def blade_length(demodulated, *, rate, chopping_hz, aliased, prf_hz, wavelength_m, noise_power, params, n_blades):
+    """Tip Doppler from the flash edges, and r by inverting Eq. 6.
+
+    Returns (tip bandwidth Measured, blade length Measured, edges (low_hz, high_hz) or None).
     The edges are those of a flash's rectangular spectrum only when the window holds the whole
     flash. A broadside blade's sinc lasts ``2 / f_tip`` (main lobe); the window is
     ``w / (N f_rot)``; their ratio is ``w Gamma / (2 N)`` with ``Gamma = f_tip / f_rot``. Below
     ``FLASHES_PER_WINDOW`` main lobes r is not reported.
     """
-    edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, window_s=params.edge_window_periods / row["chopping_freq_hz"],
+    if aliased:
+        note = "blade length not estimable: aliased"
+        return withheld("aliased", note), withheld("aliased", note), None
+    if rate.value is None:
+        note = "blade length not estimable: needs the rotation rate"
+        return withheld("no_rotation", note), withheld("no_rotation", note), None
+    edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, window_s=params.edge_window_periods / chopping_hz,
                                  noise_power=noise_power, hop_fraction=params.edge_hop_fraction)
     if edges.low_hz is None:
-        notes.append("blade length not estimable: no flash frame with both Doppler edges inside the span")
-        return None
+        note = "blade length not estimable: no flash frame with both Doppler edges inside the span"
+        return withheld("no_edges", note), withheld("no_edges", note), None
     bandwidth = edges.high_hz - edges.low_hz
-    row["doppler_bw_spectrogram_hz"] = bandwidth
-    row["tip_doppler_hz"] = bandwidth / 2
-    gamma = bandwidth / 2 / rate_hz
-    min_gamma = FLASHES_PER_WINDOW * 2 * params.n_blades / params.edge_window_periods
+    tip = Measured(float(bandwidth))
+    gamma = bandwidth / 2 / rate.value
+    min_gamma = FLASHES_PER_WINDOW * 2 * n_blades / params.edge_window_periods
     if gamma < min_gamma:
-        notes.append(f"blade length not estimable: the tips span {gamma:.1f} rotation harmonics (< {min_gamma:.0f}); "
-                     "a flash that long does not fit the analysis window and its Doppler edges blur")
+        length = withheld("few_harmonics", f"blade length not estimable: the tips span {gamma:.1f} rotation harmonics "
+                          f"(< {min_gamma:.0f}); a flash that long does not fit the analysis window and its Doppler "
+                          "edges blur")
     elif abs(params.elevation_deg) > MAX_ELEVATION_DEG:
-        notes.append(f"blade length not estimable: elevation {params.elevation_deg:g} deg (Eq. 6 divides by "
-                     f"cos(beta) = {np.cos(np.deg2rad(params.elevation_deg)):.2f})")
+        length = withheld("elevation", f"blade length not estimable: elevation {params.elevation_deg:g} deg (Eq. 6 "
+                          f"divides by cos(beta) = {np.cos(np.deg2rad(params.elevation_deg)):.2f})")
     else:
-        row["blade_length_m"] = float(rotor.blade_length_from_bandwidth_m(
-            bandwidth, rotation_rate_hz=rate_hz, wavelength_m=wavelength_m, elevation_deg=params.elevation_deg))
-    return edges.low_hz, edges.high_hz
+        value = float(rotor.blade_length_from_bandwidth_m(bandwidth, rotation_rate_hz=rate.value,
+                                                           wavelength_m=wavelength_m,
+                                                           elevation_deg=params.elevation_deg))
+        length = Measured(value, rate.status, rate.note.replace("rotation rate", "blade length") if rate.note else "")
+    return tip, length, (edges.low_hz, edges.high_hz)
 
 
-def _wingbeat(demodulated, *, prf_hz, noise_power, dwell_s, row, notes):
+def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s):
+    """Wingbeat frequency (Hz) of a bird's body-demodulated echo, from two wingbeats in the dwell on."""
     beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power)
     if beat is not None and beat.strength >= MIN_PERIODICITY and beat.repeats >= 2:
-        row["wingbeat_period_s"] = beat.period_s
-        row["wingbeat_freq_hz"] = 1.0 / beat.period_s
-    else:
-        notes.append(f"no wingbeat between {max(MIN_WINGBEAT_HZ, 2.0 / dwell_s):.2g} and {MAX_WINGBEAT_HZ:g} Hz "
-                     f"(a dwell of {dwell_s:.3g} s holds two wingbeats only above {2.0 / dwell_s:.2g} Hz)")
+        return Measured(1.0 / beat.period_s)
+    note = (f"no wingbeat between {max(MIN_WINGBEAT_HZ, 2.0 / dwell_s):.2g} and {MAX_WINGBEAT_HZ:g} Hz "
+            f"(a dwell of {dwell_s:.3g} s holds two wingbeats only above {2.0 / dwell_s:.2g} Hz)")
+    return withheld("dwell_short" if dwell_s < 2.0 / MIN_WINGBEAT_HZ else "no_wingbeat", note)
+
+
+def _columns(primary, measured, derived=None):
+    """The row entries of one measured quantity: its value, derived values, and every one's status."""
+    entries = {primary: measured.value, f"{primary}_status": measured.status}
+    for key in FEATURE_GROUPS[primary]:
+        entries[key] = None if measured.value is None or derived is None else derived.get(key)
+        entries[f"{key}_status"] = measured.status
+    return entries
 
 
 def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
@@ -235,34 +408,50 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
         Noise power per chirp of ``signal`` (V^2).
     params : ProcessParams
     """
-    notes = []
     dwell_s = len(signal) / prf_hz
     s = np.asarray(signal, dtype=np.complex128)
     s = s - s.mean()  # static clutter in this bin
     moving = float(np.mean(np.abs(s) ** 2))
     snr = (moving - noise_power) / noise_power if noise_power > 0 else np.inf
-    row = dict.fromkeys(FEATURE_KEYS)
-    row["snr_db"] = float(10 * np.log10(snr)) if snr > 0 else float("-inf")
-    demodulated = _body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m, row=row, notes=notes)
-    plain, extent, aliased, half_width_hz = _doppler_band(
-        s, demodulated, prf_hz=prf_hz, wavelength_m=wavelength_m, noise_power=noise_power, params=params,
-        row=row, notes=notes)
-    rate = _rotation(demodulated, aliased=aliased, half_width_hz=half_width_hz, prf_hz=prf_hz,
-                     noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s, notes=notes)
-    edges = None
-    if rate is not None:
-        row["rotation_rate_hz"] = rate
-        row["rotation_period_s"] = 1.0 / rate
-        row["flash_period_s"] = float(rotor.flash_period_s(rate, n_blades=params.n_blades))
-        row["chopping_freq_hz"] = float(rotor.chopping_frequency_hz(rate, n_blades=params.n_blades))
-        if not aliased:
-            edges = _blade_length(demodulated, rate_hz=rate, prf_hz=prf_hz, wavelength_m=wavelength_m,
-                                  noise_power=noise_power, params=params, row=row, notes=notes)
-    else:  # blade flashes exclude a bird
-        _wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s, row=row, notes=notes)
-    row["aliased"] = bool(aliased)
+    snr_db = Measured(float(10 * np.log10(snr))) if snr > 0 else withheld("no_signal", "no power above the noise")
+    body = body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m)
+    band = doppler_band(s, body.demodulated, prf_hz=prf_hz, wavelength_m=wavelength_m, noise_power=noise_power)
+    body_doppler_hz = float(np.median(body.track_hz)) if body.track_hz is not None else 0.0
+    bandwidth, extent = paper_bandwidth(body.demodulated, prf_hz=prf_hz, threshold_db=params.threshold_db,
+                                        body_doppler_hz=body_doppler_hz, aliased=band.aliased)
+    turn = rotation(body.demodulated, aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
+                    noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s,
+                    halfwidth_mps=band.halfwidth.value)
+    tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
+                                      aliased=band.aliased, prf_hz=prf_hz, wavelength_m=wavelength_m,
+                                      noise_power=noise_power, params=params, n_blades=turn.n_blades)
+    if turn.chopping.value is not None:
+        beat = withheld("not_applicable", "")  # blade flashes exclude a bird
+    else:
+        beat = wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s)
+    rate_hz = turn.rate.value
+    row = {
+        **_columns("snr_db", snr_db),
+        **_columns("micro_doppler_halfwidth_mps", band.halfwidth),
+        **_columns("doppler_bw_hz", bandwidth, extent and {
+            "doppler_bw_mps": float(bandwidth.value * wavelength_m / 2), "doppler_low_hz": extent[0],
+            "doppler_high_hz": extent[1]}),
+        **_columns("chopping_freq_hz", turn.chopping),
+        **_columns("rotation_rate_hz", turn.rate, rate_hz and {
+            "rotation_period_s": 1.0 / rate_hz, "rotor_rates_hz": list(turn.rotor_rates_hz),
+            "flash_period_s": float(rotor.flash_period_s(rate_hz, n_blades=turn.n_blades))}),
+        **_columns("doppler_bw_spectrogram_hz", tip, {"tip_doppler_hz": tip.value and tip.value / 2}),
+        **_columns("blade_length_m", length),
+        **_columns("body_velocity_mps", body.velocity, {"body_doppler_hz": body_doppler_hz}),
+        **_columns("wingbeat_freq_hz", beat, beat.value and {"wingbeat_period_s": 1.0 / beat.value}),
+        "aliased": bool(band.aliased), "n_rotors": len(turn.rotor_rates_hz) or None,
+        "n_blades": turn.n_blades, "n_blades_source": turn.n_blades_source,
+    }
     window, hop = display_window_s(row, params)
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
     row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
-    return TargetAnalysis(row=row, spectrum=plain, spectrogram=shown, paper_extent_hz=extent,
+    notes = [m.note for m in (body.velocity, band.halfwidth, bandwidth, turn.rate, tip, length, beat)
+             if m.note and m.status != OK]
+    notes = list(dict.fromkeys(notes))  # one sentence once (blade length and its tip share theirs)
+    return TargetAnalysis(row=row, spectrum=band.spectrum, spectrogram=shown, paper_extent_hz=extent,
                           flash_edges_hz=edges, notes=notes)

@@ -9,7 +9,7 @@ from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
 from mdpipe.process import ranging, selection
 from mdpipe.process.classify import classify
-from mdpipe.process.features import FEATURE_KEYS, analyse_target
+from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, analyse_target
 
 MIN_CHIRPS = 64
 
@@ -50,7 +50,9 @@ def _base_row(path, stats, process, params):
     return {
         "file": str(path), "target": None, "class": "none", "range_m": None, "range_bin": None,
         "range_min_m": None, "range_max_m": None, "rx_gain_db": None, **dict.fromkeys(FEATURE_KEYS),
-        "elevation_deg": process.elevation_deg, "n_blades": process.n_blades, "threshold_db": process.threshold_db,
+        **dict.fromkeys(STATUS_KEYS, "no_target"),
+        "elevation_deg": process.elevation_deg, "n_blades": process.n_blades,
+        "n_blades_source": None if process.n_blades is None else "given", "threshold_db": process.threshold_db,
         "wavelength_m": params.wavelength_m, "prf_hz": params.prf_hz, "dwell_s": params.duration_s(stats.n_chirps),
         "mdpipe_version": __version__,
     }

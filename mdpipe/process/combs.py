@@ -1,0 +1,298 @@
+"""Line combs in a rotor's Doppler spectrum: chopping frequency per rotor, blade parity and imbalance.
+
+A rotor's body-free echo is periodic with the chopping period ``1 / (N f_rot)`` (its blades are
+interchangeable), so its spectrum is a comb of lines at ``k N f_rot`` (paper Eqs. 2-5); a drone's
+rotors, turning at rates a few per cent apart, give one comb each. A comb at candidate spacing f is
+scored by its *contrast*: the mean line score at ``k f`` minus that half-way between, at
+``(k + 1/2) f``. The true spacing has every comb position on a line and none half-way; its double
+2f has every other line half-way (contrast ~0); its half f/2 has half its positions empty (half the
+contrast). So the contrast peaks at the fundamental of each comb, not at its multiples or
+sub-multiples, and it does not need the rotors to turn at one rate.
+
+Positions are folded into the unambiguous span, so an aliased comb (stroboscopic flashes at 76 GHz)
+is scored the same way. Line scores are ``log(1 + P / noise)``: a few strong lines near the body do
+not outweigh the many lines of the comb, and noise has a known score.
+
+Beyond the spacing, the comb tells what it can of the blade count N:
+
+* blades of unequal reflectivity (a tag, a repaired blade) make the echo repeat only once a turn:
+  weaker lines at ``(k + j / N) f_chop`` for every j. The largest d whose sub-lines are all
+  present is N.
+* an odd-bladed rotor flashes 2N times a turn but its complex echo repeats N times: its power
+  envelope has lines at even multiples of f_chop only; an even one at every multiple.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mdpipe.process.doppler import noise_level_per_bin, periodic_hann
+
+MIN_CHOP_HZ = 20.0           # 2 blades at 10 rev/s
+MAX_CHOP_HZ = 3000.0         # 6 blades at 500 rev/s
+COARSE_SEGMENT_S = 0.25      # Welch segments of the coarse search
+MAX_COARSE_HARMONICS = 12
+MIN_HARMONICS = 3            # a comb needs this many lines each side within the band
+COMB_T = 8.0                 # a comb's contrast in standard errors of its line-by-line differences
+MAX_FINE_HARMONICS = 64
+MAX_GRID_POINTS = 4096
+PAD = 2                      # zero-padding of the spectra
+FUNDAMENTAL_SHARE = 0.7      # a sub-multiple spacing this strong is the comb's real fundamental
+MULTIPLE_SHARE = 0.6         # a multiple 2f of a comb sums half its contrast: below this share
+ROTOR_SHARE = 0.35           # a further rotor's contrast against the strongest rotor's
+ROTOR_SPREAD = 0.12          # rotors of one drone turn within +-12 % of each other
+MAX_ROTORS = 8
+SUBLINE_Z = 5.0              # imbalance sub-lines: z of their mean score over the half-way positions
+MAX_BLADES = 6
+PARITY_SHARE = 0.5           # odd N: contrast at odd multiples of f_chop below this share of the even ones'
+
+
+@dataclass(frozen=True)
+class Comb:
+    """Combs found in a spectrum: one chopping frequency per resolved rotor, strongest first.
+
+    ``contrast``: mean line score at the comb over that half-way (``log(1 + SNR)`` units); ``t``: that
+    contrast in standard errors of the line-by-line differences; ``harmonics``: lines a side scored
+    for the strongest; ``resolution_hz``: bin width of the whole-dwell spectrum.
+    """
+
+    chopping_hz: tuple
+    contrast: tuple
+    t: tuple
+    harmonics: int
+    resolution_hz: float
+
+
+@dataclass(frozen=True)
+class LineSpectrum:
+    """Line scores ``log(1 + P / noise)`` per bin of a spectrum in FFT order (zero-padded ``PAD`` times)."""
+
+    score: np.ndarray
+    prf_hz: float
+
+    @property
+    def resolution_hz(self):
+        return self.prf_hz / len(self.score)
+
+    def at(self, f_hz):
+        """Score at frequencies ``f_hz`` (any shape), folded into the span; the larger of the two nearest bins."""
+        n = len(self.score)
+        position = (np.asarray(f_hz) / self.resolution_hz) % n
+        lower = np.floor(position).astype(np.int64) % n
+        return np.maximum(self.score[lower], self.score[(lower + 1) % n])
+
+    def without(self, spacing_hz, orders, *, width_bins=2 * PAD):
+        """The same spectrum with the lines at ``k spacing_hz`` (k in ``orders``, both signs) replaced by noise."""
+        score = self.score.copy()
+        n = len(score)
+        centre = np.rint(np.concatenate([orders, -orders]) * spacing_hz / self.resolution_hz).astype(np.int64)
+        score[(centre[:, None] + np.arange(-width_bins, width_bins + 1)[None, :]) % n] = NOISE_SCORE
+        return LineSpectrum(score=score, prf_hz=self.prf_hz)
+
+
+NOISE_SCORE = float(np.e * 0.21938393439552029)  # E[log(1 + x)] for x ~ Exp(1): e E1(1)
+
+
+def line_spectrum(signal, *, prf_hz, noise_power, segment_chirps=None, pad=PAD):
+    """Line scores of ``signal``: a Hann periodogram, or the Welch average over ``segment_chirps`` segments.
+
+    The noise level per bin comes from ``noise_power`` (per chirp); a Welch average of M segments has
+    the same mean noise level and M times less spread. ``pad``: zero-padding factor (a line between
+    two bins loses at most 0.4 dB at the nearer of the two, against 1.4 dB unpadded).
+    """
+    x = np.asarray(signal, dtype=np.complex128)
+    n = len(x) if segment_chirps is None else int(min(segment_chirps, len(x)))
+    window = periodic_hann(n)
+    starts = range(0, len(x) - n + 1, max(1, n // 2))
+    power = np.zeros(pad * n)
+    for count, start in enumerate(starts, 1):
+        power += np.abs(np.fft.fft(x[start:start + n] * window, pad * n)) ** 2
+    power /= count * np.sum(window) ** 2
+    level = max(noise_level_per_bin(noise_power, n), np.finfo(float).tiny)
+    return LineSpectrum(score=np.log1p(power / level), prf_hz=prf_hz)
+
+
+def comb_statistics(lines, spacing_hz, *, half_width_hz, limit, offset=0.5):
+    """Contrast and its t of combs at ``spacing_hz`` (array): scores at ``+-k f`` against ``+-(k + offset) f``.
+
+    Orders k = 1..K with ``K f`` inside ``half_width_hz`` (at most ``limit``). Returns (contrast, t, K);
+    spacings with fewer than ``MIN_HARMONICS`` orders get NaN.
+    """
+    spacing_hz = np.atleast_1d(np.asarray(spacing_hz, dtype=float))
+    n_orders = np.clip(np.floor(half_width_hz / spacing_hz), 0, limit).astype(int)
+    top = int(n_orders.max()) if len(n_orders) else 0
+    if top < MIN_HARMONICS:
+        nan = np.full(len(spacing_hz), np.nan)
+        return nan, nan, n_orders
+    order = np.arange(1, top + 1, dtype=float)
+    k = np.concatenate([order, -order])
+    valid = np.abs(k)[None, :] <= n_orders[:, None]
+    difference = lines.at(spacing_hz[:, None] * k) - lines.at(spacing_hz[:, None] * (k + np.sign(k) * offset))
+    count = np.maximum(valid.sum(axis=1), 1)
+    mean = np.where(valid, difference, 0.0).sum(axis=1) / count
+    variance = np.where(valid, (difference - mean[:, None]) ** 2, 0.0).sum(axis=1) / np.maximum(count - 1, 1)
+    t = mean / np.sqrt(np.maximum(variance, np.finfo(float).tiny) / count)
+    few = n_orders < MIN_HARMONICS
+    mean[few], t[few] = np.nan, np.nan
+    return mean, t, n_orders
+
+
+def _local_maxima(values):
+    v = np.where(np.isfinite(values), values, -np.inf)
+    return np.flatnonzero((v[1:-1] > v[:-2]) & (v[1:-1] >= v[2:])) + 1
+
+
+@dataclass(frozen=True)
+class _Candidate:
+    spacing_hz: float
+    contrast: float
+    t: float
+    orders: int
+
+
+def _best(lines, grid, *, half_width_hz, limit):
+    """The spacing of ``grid`` with the largest contrast (None when no spacing has enough lines)."""
+    values, t, orders = comb_statistics(lines, grid, half_width_hz=half_width_hz, limit=limit)
+    if not np.any(np.isfinite(values)):
+        return None
+    i = int(np.nanargmax(values))
+    return _Candidate(float(grid[i]), float(values[i]), float(t[i]), int(orders[i]))
+
+
+def _search(lines, low_hz, high_hz, *, half_width_hz, max_points=MAX_GRID_POINTS):
+    """Best spacing in ``[low_hz, high_hz]``: a grid fine enough for the top line, then refined around the best."""
+    limit = int(min(MAX_FINE_HARMONICS, max(MIN_HARMONICS, np.floor(half_width_hz / high_hz))))
+    step = max(lines.resolution_hz / (4 * limit), (high_hz - low_hz) / max_points)
+    best = _best(lines, np.arange(low_hz, high_hz + step, step), half_width_hz=half_width_hz, limit=limit)
+    while best is not None and step > lines.resolution_hz / (4 * max(best.orders, 1)):
+        low_hz, high_hz = best.spacing_hz - 2 * step, best.spacing_hz + 2 * step
+        step = max(lines.resolution_hz / (4 * max(best.orders, 1)), (high_hz - low_hz) / max_points)
+        best = _best(lines, np.arange(low_hz, high_hz + step, step), half_width_hz=half_width_hz, limit=limit)
+    return best
+
+
+def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ, max_hz=MAX_CHOP_HZ):
+    """Chopping frequencies of the rotors in a body-free echo ``signal``, or None when no comb stands out.
+
+    Parameters
+    ----------
+    signal : ndarray (n,) complex
+        Slow time with the body demodulated to 0 Hz.
+    prf_hz, noise_power : float
+        Slow-time sample rate; noise power per chirp.
+    half_width_hz : float
+        Half-width of the micro-Doppler band (lines beyond it are not scored); ``prf_hz / 2`` or more
+        when the band is aliased: positions are folded.
+
+    1. Coarse search over ``min_hz .. max_hz`` on a Welch spectrum of ``COARSE_SEGMENT_S`` segments
+       with up to ``MAX_COARSE_HARMONICS`` lines a side, among combs with ``t >= COMB_T``. The comb's
+       *summed* contrast ranks them: the true spacing f and its sub-multiples f/m explain every line,
+       a multiple m f only 1/m of them; the largest spacing whose sum reaches ``MULTIPLE_SHARE`` of
+       the best is taken (the sub-multiples are told apart by their half-empty positions next).
+    2. Its fundamental (:func:`fundamental_hz`) must be a rotation rate of at least ``min_hz / 2``:
+       finer lines than that are a bird's wingbeat or a swaying branch, not blades.
+    3. Rotors, on the whole-dwell spectrum: the best comb near the coarse one, refined, its lines
+       removed; then again within ``+-ROTOR_SPREAD`` while a comb reaches ``ROTOR_SHARE`` of the first
+       one's contrast with ``t >= COMB_T``.
+    """
+    max_hz = min(max_hz, half_width_hz / MIN_HARMONICS)
+    if max_hz <= min_hz:
+        return None
+    segment = int(min(len(signal), round(COARSE_SEGMENT_S * prf_hz)))
+    coarse = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power, segment_chirps=segment)
+    step = coarse.resolution_hz / (2 * MAX_COARSE_HARMONICS)
+    grid = np.arange(min_hz, max_hz, step)
+    if len(grid) < 16:
+        return None
+    values, t, _ = comb_statistics(coarse, grid, half_width_hz=half_width_hz, limit=MAX_COARSE_HARMONICS)
+    # the lines a comb explains in the whole band: a multiple m f of the comb explains 1/m of them
+    total = np.where(t >= COMB_T, values * np.floor(half_width_hz / grid), np.nan)
+    if not np.any(np.isfinite(total)):
+        return None
+    peaks = _local_maxima(total)
+    peaks = peaks[total[peaks] >= MULTIPLE_SHARE * np.nanmax(total)]
+    if len(peaks) == 0:
+        return None
+    guess = float(grid[peaks.max()])
+    if fundamental_hz(coarse, guess, half_width_hz=half_width_hz) < min_hz / 2:
+        return None
+    lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
+    width = coarse.resolution_hz / MIN_HARMONICS
+    first = _search(lines, guess - width, guess + width, half_width_hz=half_width_hz)
+    if first is None or first.t < COMB_T:
+        return None
+    found = [first]
+    while len(found) < MAX_ROTORS:
+        lines = lines.without(found[-1].spacing_hz, np.arange(1, found[-1].orders + 1))
+        best = _search(lines, first.spacing_hz * (1 - ROTOR_SPREAD), first.spacing_hz * (1 + ROTOR_SPREAD),
+                       half_width_hz=half_width_hz)
+        if best is None or best.t < COMB_T or best.contrast < ROTOR_SHARE * first.contrast:
+            break
+        found.append(best)
+    return Comb(chopping_hz=tuple(c.spacing_hz for c in found), contrast=tuple(c.contrast for c in found),
+                t=tuple(c.t for c in found), harmonics=first.orders, resolution_hz=lines.resolution_hz)
+
+
+def fundamental_hz(lines, spacing_hz, *, half_width_hz):
+    """The smallest ``spacing_hz / m`` whose comb contrast reaches ``FUNDAMENTAL_SHARE`` of ``spacing_hz``'s.
+
+    Candidates down to two bins of ``lines``. A rotor's comb has nothing between its lines unless a
+    blade differs (then the turn rate, m = N); a bird's wingbeat lines continue below 20 Hz.
+    """
+    reference = comb_statistics(lines, spacing_hz, half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS)[0][0]
+    divisors = np.arange(2, int(spacing_hz / (2 * lines.resolution_hz)) + 1)
+    if len(divisors) == 0 or not np.isfinite(reference):
+        return spacing_hz
+    values = comb_statistics(lines, spacing_hz / divisors, half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS)[0]
+    strong = divisors[np.nan_to_num(values, nan=-np.inf) >= FUNDAMENTAL_SHARE * reference]
+    return float(spacing_hz / strong.max()) if len(strong) else float(spacing_hz)
+
+def _orders(spacing_hz, half_width_hz, limit):
+    """Line orders 1..K on each side whose positions lie within the band (at most ``limit``)."""
+    return np.arange(1, int(np.clip(np.floor(half_width_hz / spacing_hz), 0, limit)) + 1)
+
+
+def blade_count_from_sublines(signal, chopping_hz, *, prf_hz, noise_power, half_width_hz):
+    """N from the lines between the chopping lines (blades of unequal reflectivity), or None.
+
+    For each d = MAX_BLADES .. 2 the positions ``(k + j/d) f_chop``, j = 1..d-1, are scored against
+    the positions half-way between them; the largest d with every j significant is N.
+    """
+    lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
+    order = _orders(chopping_hz, half_width_hz, MAX_FINE_HARMONICS)
+    if len(order) < MIN_HARMONICS:
+        return None
+    k = np.concatenate([order - 1, -order]).astype(float)  # the gaps on both sides of 0 Hz
+    for d in range(MAX_BLADES, 1, -1):
+        significant = []
+        for j in range(1, d):
+            on = lines.at((k + j / d) * chopping_hz)
+            off = lines.at((k + (j + 0.5) / d) * chopping_hz)
+            spread = np.std(off) / np.sqrt(len(off))
+            significant.append(spread > 0 and (on.mean() - off.mean()) / spread >= SUBLINE_Z)
+        if all(significant):
+            return d
+    return None
+
+
+def odd_blades(signal, chopping_hz, *, prf_hz, half_width_hz):
+    """True when the power envelope repeats twice per chopping period (odd N), False when once, None unclear.
+
+    The envelope ``|s|^2`` of an odd-bladed rotor has lines at even multiples of ``f_chop`` only.
+    """
+    envelope = np.abs(np.asarray(signal)) ** 2
+    envelope = envelope - envelope.mean()
+    spread = np.median(envelope ** 2) ** 0.5
+    if not spread > 0:
+        return None
+    lines = line_spectrum(envelope, prf_hz=prf_hz, noise_power=float(np.mean(envelope ** 2)))
+    order = _orders(chopping_hz, min(half_width_hz, prf_hz / 2), 16)
+    if len(order) < 2:
+        return None
+    odd = order[order % 2 == 1].astype(float)
+    even = order[order % 2 == 0].astype(float)
+    gap = lambda k: lines.at(k * chopping_hz) - lines.at((k + 0.25) * chopping_hz)  # noqa: E731
+    even_contrast, odd_contrast = gap(even).mean(), gap(odd).mean()
+    if even_contrast <= 0:
+        return None
+    return bool(odd_contrast < PARITY_SHARE * even_contrast)

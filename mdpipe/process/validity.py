@@ -1,0 +1,52 @@
+"""Validity of each measured value, as data: ``ok`` or a reason code, beside the sentence for people.
+
+Every feature column ``X`` of a row has a companion ``X_status``. A value with status ``ok`` is a
+measurement mdpipe stands behind. A value with another status is either absent (null, the code says
+why) or, for ``assumed_blades``, present but resting on an assumption the row names
+(``n_blades``, ``n_blades_source``). Programs should use values whose status is ``ok``.
+"""
+
+from dataclasses import dataclass
+
+OK = "ok"
+
+STATUS_CODES = {
+    OK: "measured",
+    "no_target": "no moving target was detected in the range gate",
+    "no_signal": "the capture holds no usable signal in this bin",
+    "aliased": "the micro-Doppler wraps around the span 1/Tp: its extent is unknown",
+    "dwell_short": "the dwell holds too few periods of what is measured",
+    "no_flashes": "no periodic blade flashes (no line comb) in the echo",
+    "ambiguous_period": "two estimators found periods a whole multiple apart; the dwell does not tell which",
+    "not_rotor": "the echo is periodic, but too narrow in Doppler for blades turning at that rate",
+    "assumed_blades": "depends on the blade count, which the echo does not tell and the user did not give",
+    "blade_conflict": "the blade count given contradicts the echo (odd/even flashes or blade imbalance lines)",
+    "no_rotation": "needs the rotation rate, which was not measured",
+    "elevation": "the rotor plane is too close to face-on (|beta| > 80 deg): Eq. 6 divides by ~0",
+    "few_harmonics": "the blade tips span too few rotation harmonics for the flash edges to be sharp",
+    "no_edges": "no flash frame shows both Doppler edges inside the span",
+    "no_body_line": "no body line stands out of the micro-Doppler",
+    "body_unsteady": "the strongest line jumps between the body and rotor lines: no steady body track",
+    "body_only": "only the body line crosses the threshold: no micro-Doppler extent",
+    "below_threshold": "nothing in the spectrum stands the threshold above its mean",
+    "no_wingbeat": "no repeating wingbeat pattern in the dwell",
+    "not_applicable": "not a quantity of this target (e.g. the wingbeat of an echo with blade flashes)",
+}
+
+
+@dataclass(frozen=True)
+class Measured:
+    """A value, its status code (a key of :data:`STATUS_CODES`) and, unless ok, the sentence why."""
+
+    value: object = None
+    status: str = OK
+    note: str = ""
+
+    def __post_init__(self):
+        if self.status not in STATUS_CODES:
+            raise ValueError(f"unknown status {self.status!r}")
+
+
+def withheld(status, note):
+    """No value, for the reason ``status`` (``note`` says it for people)."""
+    return Measured(None, status, note)
