@@ -28,6 +28,7 @@ FLASHES_PER_WINDOW = 1.5     # flash main lobes the edge window must hold: Gamma
 MIN_PERIODICITY = 0.2        # wingbeat autocorrelation prominence needed
 MIN_ROTOR_PERIODICITY = 0.6  # a rotor's echo repeats almost exactly (measured 0.93-0.95; a gull's best: 0.40)
 HIGHPASS_SHARE = 0.25        # body removal for unaliased echoes: cut below this share of the band's half-width
+EDGE_NOTCH_SHARE = 0.05      # body removal before the flash edges (which lie at the band's ends)
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 MIN_BLADE_REACH_M = 0.005    # r cos(beta) below this is no blade: a comb that narrow is not a rotor
@@ -339,7 +340,8 @@ def _blade_count(micro, chopping_hz, *, n_blades, aliased, prf_hz, noise_power, 
     return (ASSUMED_ODD_BLADES if parity else ASSUMED_EVEN_BLADES), "assumed", None
 
 
-def blade_length(demodulated, *, rate, chopping_hz, aliased, prf_hz, wavelength_m, noise_power, params, n_blades):
+def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_hz, wavelength_m, noise_power, params,
+                 n_blades):
     """Tip Doppler from the flash edges, and r by inverting Eq. 6.
 
     Returns (tip bandwidth Measured, blade length Measured, edges (low_hz, high_hz) or None).
@@ -354,7 +356,9 @@ def blade_length(demodulated, *, rate, chopping_hz, aliased, prf_hz, wavelength_
     if rate.value is None:
         note = "blade length not estimable: needs the rotation rate"
         return withheld("no_rotation", note), withheld("no_rotation", note), None
-    edges = spectral.flash_edges(demodulated, prf_hz=prf_hz, window_s=params.edge_window_periods / chopping_hz,
+    # the body line, demodulated to 0 Hz, would outshine the flashes' plateau: notch it out first
+    micro = highpass(demodulated, prf_hz=prf_hz, cutoff_hz=EDGE_NOTCH_SHARE * half_width_hz)
+    edges = spectral.flash_edges(micro, prf_hz=prf_hz, window_s=params.edge_window_periods / chopping_hz,
                                  noise_power=noise_power, hop_fraction=params.edge_hop_fraction)
     if edges.low_hz is None:
         note = "blade length not estimable: no flash frame with both Doppler edges inside the span"
@@ -423,7 +427,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
                     noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s,
                     halfwidth_mps=band.halfwidth.value)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
-                                      aliased=band.aliased, prf_hz=prf_hz, wavelength_m=wavelength_m,
+                                      aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
+                                      wavelength_m=wavelength_m,
                                       noise_power=noise_power, params=params, n_blades=turn.n_blades)
     if turn.chopping.value is not None:
         beat = withheld("not_applicable", "")  # blade flashes exclude a bird
