@@ -48,12 +48,14 @@ def _parabolic_peak(r, index):
     return index + (0.5 * (left - right) / curvature if curvature < 0 else 0.0)
 
 
-def _repeats(prominence, lag):
-    """The peak at ``lag`` recurs at 2 lag (and 3 lag where the record allows) with half its prominence."""
-    limit = len(prominence) // 2
+def _repeats(prominence, lag, limit, untestable):
+    """The peak at ``lag`` recurs at 2 lag (and 3 lag below ``limit``) with half its prominence.
+
+    ``untestable``: what to answer when 2 lag lies beyond ``limit`` (the record holds under three periods).
+    """
     for k in (2, 3):
         if k * lag >= limit:
-            return k > 2
+            return k > 2 or untestable
         half = max(2, int(0.02 * lag))  # the coarse lag is good to a sample: an offset peak nearby must not count
         if prominence[k * lag - half:k * lag + half + 1].max() < REPEAT_SHARE * prominence[lag]:
             return False
@@ -69,12 +71,15 @@ def find_period(signal, *, sample_rate_hz, min_period_s, max_period_s):
                                        min_period_s=min_period_s, max_period_s=max_period_s)
 
 
-def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s):
+def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s, repeat_share=0.5):
     """The fundamental period in a normalised autocorrelation ``r`` (lag 0 first).
 
     Lags up to half the record are searched (two repeats at least). Strength is the peak's height
     above the running minimum over one shortest candidate period (a baseline that the decay of a
-    broadband echo does not raise).
+    broadband echo does not raise). Repeats at k T are looked for, and the period refined on them,
+    at lags below ``repeat_share`` of the record (an unbiased autocorrelation at lag L rests on
+    ``n - L`` products). With ``repeat_share`` above 1/2 a period whose double lies beyond it (two
+    or fewer periods in the record) is kept with ``repeats = 1``: the caller decides on its strength.
     """
     lo = max(2, int(np.ceil(min_period_s * sample_rate_hz)))
     hi = min(int(max_period_s * sample_rate_hz), len(r) // 2)
@@ -87,11 +92,13 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     if len(peaks) == 0:
         return None
     heights = prominence[peaks]
-    first = next((p for p in peaks[heights >= FUNDAMENTAL_SHARE * heights.max()] if _repeats(prominence, p)), None)
+    limit = int(repeat_share * len(r))
+    first = next((p for p in peaks[heights >= FUNDAMENTAL_SHARE * heights.max()]
+                  if _repeats(prominence, p, limit, untestable=repeat_share > 0.5)), None)
     if first is None:
         return None
     coarse = _parabolic_peak(r, first)
-    repeats = min(MAX_REPEATS, int((len(r) // 2) / coarse))
+    repeats = max(1, min(MAX_REPEATS, int(limit / coarse)))
     lags, ks = [], []
     for k in range(1, repeats + 1):
         centre = int(round(k * coarse))

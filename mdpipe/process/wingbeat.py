@@ -18,6 +18,7 @@ MIN_WINGBEAT_HZ = 0.3
 MAX_WINGBEAT_HZ = 20.0
 MAX_MICRO_DOPPLER_HZ = 2000.0  # rows kept: wings move at a few m/s (< 2 kHz even at 76 GHz)
 SIGNAL_ROW_DB = 10.0
+REPEAT_SHARE = 0.8  # repeats looked for up to 80 % of the record: three wingbeats show their repeat at 2T
 
 
 def pattern_autocorrelation(spec, *, detrend_frames, noise_level):
@@ -41,7 +42,8 @@ def pattern_autocorrelation(spec, *, detrend_frames, noise_level):
 def wingbeat(demodulated, *, prf_hz, noise_power):
     """Wingbeat period of a body-demodulated echo (noise ``noise_power`` per chirp), or None.
 
-    Needs two wingbeats in the dwell.
+    Needs two wingbeats in the dwell; with fewer than three the period cannot be seen to repeat
+    (``repeats`` is 1) and the caller asks more of its strength.
     """
     frame_s = min(FRAME_S, len(demodulated) / prf_hz / 8)
     hop_s = HOP_S * frame_s / FRAME_S
@@ -50,4 +52,4 @@ def wingbeat(demodulated, *, prf_hz, noise_power):
     noise_level = noise_level_per_bin(noise_power, int(round(spec.window_s * prf_hz)))
     r = pattern_autocorrelation(spec, detrend_frames=int(2 * frame_rate / MIN_WINGBEAT_HZ), noise_level=noise_level)
     return period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
-                                       max_period_s=1.0 / MIN_WINGBEAT_HZ)
+                                       max_period_s=1.0 / MIN_WINGBEAT_HZ, repeat_share=REPEAT_SHARE)
