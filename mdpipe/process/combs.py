@@ -44,6 +44,7 @@ ROTOR_SPREAD = 0.12          # rotors of one drone turn within +-12 % of each ot
 MAX_ROTORS = 8
 SUBLINE_Z = 5.0              # imbalance sub-lines: z of their mean score over the half-way positions
 MAX_BLADES = 6
+PATTERN_MARGIN = 1.0         # every N-th line of a turn comb stronger by this (log(1 + SNR)): ~4 dB and more
 PARITY_SHARE = 0.5           # odd N: contrast at odd multiples of f_chop below this share of the even ones'
 
 
@@ -273,6 +274,30 @@ def blade_count_from_sublines(signal, chopping_hz, *, prf_hz, noise_power, half_
         if all(significant):
             return d
     return None
+
+
+def blade_count_from_line_pattern(signal, spacing_hz, *, prf_hz, noise_power, half_width_hz):
+    """N when every N-th line of the comb at ``spacing_hz`` stands out (the comb is a turn, one blade differs).
+
+    For d = 2 .. MAX_BLADES, the line scores at orders that are multiples of d are compared with the
+    others; of the d whose multiples are stronger by ``PATTERN_MARGIN`` (in ``log(1 + SNR)``) with a t
+    of ``SUBLINE_Z``, the one with the largest gap is N (multiples of 2N also stand out against the
+    rest, but the rest then holds strong lines too). None when the lines carry no such pattern.
+    """
+    lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
+    order = _orders(spacing_hz, half_width_hz, MAX_FINE_HARMONICS * MAX_BLADES)
+    k = np.concatenate([order, -order])
+    score = lines.at(k * spacing_hz)
+    best, best_gap = None, PATTERN_MARGIN
+    for d in range(2, MAX_BLADES + 1):
+        strong, weak = score[k % d == 0], score[k % d != 0]
+        if len(strong) < 2 * MIN_HARMONICS or len(weak) < 2 * MIN_HARMONICS:
+            continue
+        gap = strong.mean() - weak.mean()
+        spread = np.sqrt(strong.var() / len(strong) + weak.var() / len(weak))
+        if gap >= best_gap and spread > 0 and gap / spread >= SUBLINE_Z:
+            best, best_gap = d, gap
+    return best
 
 
 def odd_blades(signal, chopping_hz, *, prf_hz, half_width_hz):

@@ -14,7 +14,7 @@ from mdpipe.physics import rotor
 from mdpipe.physics.radar import range_rate_from_doppler_mps
 from mdpipe.process import combs, doppler, spectral
 from mdpipe.process.flashes import flash_period
-from mdpipe.process.periodicity import find_period
+from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeat
 
@@ -31,6 +31,7 @@ MIN_ROTOR_PERIODICITY = 0.6  # a rotor's echo repeats almost exactly (measured 0
 HIGHPASS_SHARE = 0.25        # body removal for unaliased echoes: cut below this share of the band's half-width
 EDGE_NOTCH_SHARE = 0.05      # body removal before the flash edges (which lie at the band's ends)
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
+TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 MIN_BLADE_REACH_M = 0.005    # r cos(beta) below this is no blade: a comb that narrow is not a rotor
 BANDWIDTH_SEGMENT_S = 0.25   # the paper's rule on segments of this length (its value depends on the dwell)
@@ -279,7 +280,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     if ambiguity is not None and comb is None:
         note = f"rotation not estimable: {ambiguity}"
         return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
-    chopping_hz = np.array(comb.chopping_hz) if comb is not None else None
+    chopping_hz, measured_n = None, None
+    if comb is not None:
+        chopping_hz, measured_n = _comb_blades(micro, np.array(comb.chopping_hz), aliased=aliased, prf_hz=prf_hz,
+                                               noise_power=noise_power, band_hz=band_hz)
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
         ratio = timed_hz / centre
@@ -288,6 +292,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         if abs(ratio - 1) <= AGREEMENT:
             if len(chopping_hz) == 1:
                 chopping_hz = np.array([timed_hz])
+        elif measured_n and abs(ratio * measured_n - 1) <= AGREEMENT:
+            # one blade differs: the echo repeats once a turn, the comb is its N-fold chopping
+            if len(chopping_hz) == 1:
+                chopping_hz = np.array([timed_hz * measured_n])
         elif aliased and not _whole_ratio(ratio):  # folded combs coincide by chance; flash times do not
             chopping_hz = np.array([timed_hz])
         else:
@@ -305,8 +313,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                 f"{halfwidth_mps:.2g} m/s wide is no rotor (blades turning that fast reach >= {fastest_mps:.2g} m/s)")
         return Rotation(withheld("not_rotor", note), withheld("not_rotor", note))
     chopping = Measured(float(np.median(chopping_hz)))
-    blades, source, conflict = _blade_count(micro, float(chopping_hz[0]), n_blades=n_blades, aliased=aliased,
-                                            prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz)
+    parity = None if aliased else combs.odd_blades(micro, float(chopping_hz[0]), prf_hz=prf_hz, half_width_hz=band_hz)
+    blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades)
     if conflict:
         return Rotation(chopping, withheld("blade_conflict", f"rotation not estimable: {conflict}"),
                         n_blades=blades, n_blades_source=source)
@@ -320,16 +328,38 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     return Rotation(chopping, status, rates, blades, source)
 
 
-def _blade_count(micro, chopping_hz, *, n_blades, aliased, prf_hz, noise_power, band_hz):
-    """(N, source, conflict sentence or None): given, measured from the echo, or assumed."""
-    measured = parity = None
-    if not aliased:  # folded lines hide the imbalance lines and the envelope's parity
-        measured = combs.blade_count_from_sublines(micro, chopping_hz, prf_hz=prf_hz, noise_power=noise_power,
-                                                   half_width_hz=band_hz)
-        parity = combs.odd_blades(micro, chopping_hz, prf_hz=prf_hz, half_width_hz=band_hz)
+def _comb_blades(micro, spacing_hz, *, aliased, prf_hz, noise_power, band_hz):
+    """Chopping frequencies from comb spacings, and the blade count where the line pattern tells it.
+
+    A comb whose every N-th line stands out is a rotor's turn seen through one blade that differs:
+    its chopping frequency is N times the spacing. A comb with weaker lines between its lines is the
+    chopping comb of such a rotor. Either way N is measured. Folded (aliased) combs tell neither.
+    """
+    if aliased:
+        return spacing_hz, None
+    pattern = combs.blade_count_from_line_pattern(micro, float(spacing_hz[0]), prf_hz=prf_hz,
+                                                  noise_power=noise_power, half_width_hz=band_hz)
+    if pattern:
+        # rotors at equal rates whose phases cancel some lines leave a pattern too; a tagged rotor's echo
+        # repeats almost exactly each 1/N turn, and exactly each turn
+        r = autocorrelation(micro)
+        turn = prf_hz / float(spacing_hz[0])
+        at = lambda lag: float(r[max(int(round(lag)) - 2, 0):int(round(lag)) + 3].max())  # noqa: E731
+        if at(turn / pattern) >= TAGGED_REPEAT and at(turn) > at(turn / pattern):
+            return spacing_hz * pattern, pattern
+    return spacing_hz, combs.blade_count_from_sublines(micro, float(spacing_hz[0]), prf_hz=prf_hz,
+                                                       noise_power=noise_power, half_width_hz=band_hz)
+
+
+def _blade_count(measured, parity, *, n_blades):
+    """(N, source, conflict sentence or None): given, measured from the echo, or assumed.
+
+    ``measured``: N from blade imbalance lines (or None); ``parity``: True for odd-N flash doubling,
+    False for even, None when unclear.
+    """
     if n_blades is not None:
         if measured is not None and measured != n_blades:
-            return n_blades, "given", (f"{n_blades} blades given, but lines between the chopping lines show "
+            return n_blades, "given", (f"{n_blades} blades given, but the lines between the chopping lines show "
                                        f"{measured} blades of unequal reflectivity")
         if parity is not None and parity != bool(n_blades % 2):
             return n_blades, "given", (f"{n_blades} blades given, but the flashes come "
