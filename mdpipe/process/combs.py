@@ -98,7 +98,9 @@ def line_spectrum(signal, *, prf_hz, noise_power, segment_chirps=None, pad=PAD):
     """Line scores of ``signal``: a Hann periodogram, or the Welch average over ``segment_chirps`` segments.
 
     The noise level per bin comes from ``noise_power`` (per chirp); a Welch average of M segments has
-    the same mean noise level and M times less spread. ``pad``: zero-padding factor (a line between
+    the same mean noise level and M times less spread. ``noise_power`` None: the level is taken from
+    the median bin (the median of exponential noise power is ln 2 of its mean), for signals whose
+    noise is not known, such as a power envelope. ``pad``: zero-padding factor (a line between
     two bins loses at most 0.4 dB at the nearer of the two, against 1.4 dB unpadded).
     """
     x = np.asarray(signal, dtype=np.complex128)
@@ -109,7 +111,8 @@ def line_spectrum(signal, *, prf_hz, noise_power, segment_chirps=None, pad=PAD):
     for count, start in enumerate(starts, 1):
         power += np.abs(np.fft.fft(x[start:start + n] * window, pad * n)) ** 2
     power /= count * np.sum(window) ** 2
-    level = max(noise_level_per_bin(noise_power, n), np.finfo(float).tiny)
+    level = np.median(power) / np.log(2) if noise_power is None else noise_level_per_bin(noise_power, n)
+    level = max(level, np.finfo(float).tiny)
     return LineSpectrum(score=np.log1p(power / level), prf_hz=prf_hz)
 
 
@@ -232,6 +235,33 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
         found.append(best)
     return Comb(chopping_hz=tuple(c.spacing_hz for c in found), contrast=tuple(c.contrast for c in found),
                 t=tuple(c.t for c in found), harmonics=first.orders, resolution_hz=lines.resolution_hz)
+
+
+def comb_offset_hz(signal, *, prf_hz, noise_power, half_width_hz):
+    """The Doppler about which a rotor's line comb lies when no body line marks it, or None.
+
+    The power envelope ``|s|^2`` does not see a constant Doppler: its spectrum has lines at multiples
+    of the flash rate F whatever the body's motion. The chopping frequency is F (N even) or F/2 (N
+    odd); the offset is where the complex comb of that spacing lands on its lines (and not half-way)
+    best, searched over one spacing in half-bin steps.
+    """
+    envelope = np.abs(np.asarray(signal)) ** 2
+    flashes = find_combs(envelope - envelope.mean(), prf_hz=prf_hz, noise_power=None,
+                         half_width_hz=min(2 * half_width_hz, prf_hz / 2))
+    if flashes is None:
+        return None
+    lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
+    best_contrast, best_offset = -np.inf, None
+    for spacing in (flashes.chopping_hz[0], flashes.chopping_hz[0] / 2):
+        k = np.arange(-min(MAX_FINE_HARMONICS, int(half_width_hz / spacing)),
+                      min(MAX_FINE_HARMONICS, int(half_width_hz / spacing)) + 1)
+        offsets = np.arange(-spacing / 2, spacing / 2, lines.resolution_hz / 2)
+        positions = offsets[:, None] + spacing * k[None, :]
+        contrast = (lines.at(positions) - lines.at(positions + spacing / 2)).mean(axis=1)
+        i = int(np.argmax(contrast))
+        if contrast[i] > best_contrast:
+            best_contrast, best_offset = contrast[i], float(offsets[i])
+    return best_offset
 
 
 def fundamental_hz(lines, spacing_hz, *, half_width_hz):

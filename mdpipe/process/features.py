@@ -255,7 +255,8 @@ def _whole_ratio(ratio):
     return 0
 
 
-def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, halfwidth_mps):
+def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, halfwidth_mps,
+             body_found=True):
     """Rotation of the rotors from their line combs and from the echo's period (or flash times when aliased).
 
     * The combs (:mod:`mdpipe.process.combs`) give each resolvable rotor's chopping frequency ``N f_i``.
@@ -266,7 +267,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     nothing is reported. A comb narrower in Doppler than any blade turning that fast could make
     (``r cos(beta) < MIN_BLADE_REACH_M``) is not a rotor.
     Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines,
-    odd-N flash doubling), else assumed.
+    odd-N flash doubling), else assumed. Without a body line (``body_found`` False) the comb is first
+    centred on the Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`).
     """
     if dwell_s < 2.0 / combs.MIN_CHOP_HZ:
         note = (f"rotation not estimable: dwell {dwell_s:.3g} s is shorter than two flash periods of the slowest "
@@ -274,6 +276,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(withheld("dwell_short", note), withheld("dwell_short", note))
     band_hz = prf_hz / 2 if aliased else half_width_hz
     micro = demodulated - np.mean(demodulated)  # the body, demodulated to 0 Hz; combs score lines from f_chop up
+    if not body_found and not aliased:  # rotating parts alone: their comb lies about the body's Doppler
+        offset_hz = combs.comb_offset_hz(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz)
+        if offset_hz is not None:
+            micro = micro * np.exp(-2j * np.pi * offset_hz * np.arange(len(micro)) / prf_hz)
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz)
     timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
                                                    prf_hz=prf_hz, noise_power=noise_power)
@@ -456,7 +462,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
                                         body_doppler_hz=body_doppler_hz, aliased=band.aliased)
     turn = rotation(body.demodulated, aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                     noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s,
-                    halfwidth_mps=band.halfwidth.value)
+                    halfwidth_mps=band.halfwidth.value, body_found=body.track_hz is not None)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,
