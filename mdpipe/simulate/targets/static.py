@@ -1,0 +1,55 @@
+"""A fixed point scatterer (a tree, a mast): clutter."""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mdpipe.simulate.schema import POSITIVE
+from mdpipe.simulate.targets.common import Echo, amplitude_bound_v, carrier
+
+
+@dataclass(frozen=True)
+class Target:
+    """A fixed point scatterer at ``range_m``, azimuth and elevation (degrees)."""
+
+    range_m: float = field(metadata=POSITIVE)
+    name: str = "static"
+    azimuth_deg: float = 0.0
+    elevation_deg: float = 0.0
+    rcs_m2: float = field(default=1.0, metadata=POSITIVE)
+    kind = "static"
+    expected_class = "none"
+
+    @property
+    def position_m(self):
+        az, el = np.deg2rad(self.azimuth_deg), np.deg2rad(self.elevation_deg)
+        return self.range_m * np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+
+
+def realize(target, *, seed, index, duration_s):
+    return None
+
+
+def body_track(target, realization, t_s):
+    shape = np.shape(t_s) + (3,)
+    return np.broadcast_to(target.position_m, shape), np.zeros(shape)
+
+
+def echo(target, realization, t_s, *, f0_hz):
+    """A constant echo."""
+    shape = np.shape(t_s)
+    value = np.sqrt(target.rcs_m2) / target.range_m**2 * carrier(target.range_m, f0_hz)
+    return Echo(np.full(shape, value, dtype=np.complex128), np.full(shape, target.range_m),
+                np.broadcast_to(target.position_m / target.range_m, shape + (3,)))
+
+
+def micro_doppler_bound_hz(target, realization, *, wavelength_m):
+    return 0.0
+
+
+def peak_amplitude_v(target, realization, min_range_m):
+    return amplitude_bound_v(np.sqrt(target.rcs_m2), 0.0, min_range_m)
+
+
+def truth(target, realization, *, radar, n_chirps, body_doppler_hz):
+    return {}
