@@ -318,3 +318,24 @@ def test_moving_snr_counts_what_mti_keeps(tmp_capture):
 def test_realism_configs_build(name):
     scene = scene_from_mapping(load_scene_mapping(CONFIGS / f"{name}.yaml"))
     assert scene.targets
+
+
+def test_rotor_line_weights_predict_an_imbalanced_tapered_three_blade_rotor(tmp_capture):
+    """N = 3, gains [1, 2, 1.5], tapered from a 2 cm root, phase 30 deg: every line (not only multiples of 3) equals
+    :func:`mdpipe.physics.rotor.rotor_line_weights`, the oracle the feature extractor can use for N."""
+    rev, length = 80.0, 0.105
+    target = rotor_target(rev=rev, blade_length_m=length, root_m=0.02, blades=3)
+    target["rotors"] |= {"blade_profile": "tapered", "tip_reflectivity": 0.5, "blade_gains": [1.0, 2.0, 1.5],
+                         "phase_deg": 30.0}
+    path, _ = tmp_capture(scene_mapping(XBAND | {"n_chirps": 8000}, [target]))
+    m = np.arange(-60, 61)
+    measured, params = line_spectrum(path, rev, m)
+    oracle = rotor.rotor_line_weights(m, blade_gains=[1.0, 2.0, 1.5], blade_length_m=length, root_m=0.02,
+                                      wavelength_m=LAMBDA0, profile="tapered", tip_reflectivity=0.5,
+                                      phase0_rad=np.deg2rad(30.0))
+    oracle = oracle * range_fft_response(m * rev, params, 30.0, 4)
+    scale = np.vdot(oracle, measured) / np.vdot(oracle, oracle)
+    np.testing.assert_allclose(measured, scale * oracle, atol=1e-3 * np.abs(scale * oracle).max())
+    assert np.max(np.abs(measured[m % 3 != 0])) > 0.05 * np.max(np.abs(measured))
+    equal = rotor.blade_gain_factor(m, [1.0, 1.0, 1.0])
+    np.testing.assert_allclose(equal, np.where(m % 3 == 0, 3.0, 0.0), atol=1e-12)
