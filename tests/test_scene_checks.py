@@ -108,6 +108,13 @@ def test_yaml_errors_keep_line_and_column_and_bad_files_give_one_line(tmp_path):
     with pytest.raises(ParameterError, match=r"deep\.yaml: nested too deeply to be a scene") as info:
         load_scene_mapping(deep)
     assert "\n" not in str(info.value)
+    huge = tmp_path / "huge.yaml"
+    huge.write_bytes(b"#" * 10_000_001)
+    with pytest.raises(ParameterError, match=r"huge\.yaml: over 10 MB, too large to be a scene YAML$"):
+        load_scene_mapping(huge)
+    bom = tmp_path / "bom.yaml"
+    bom.write_bytes("\ufeffname: café\n".encode("utf-8"))
+    assert load_scene_mapping(bom) == {"name": "café"}
     tab = tmp_path / "tab.yaml"
     tab.write_text("radar:\n\tf_start_hz: 1\n")
     with pytest.raises(ParameterError, match=r"tab\.yaml: not valid YAML at line 2, column 1 \(found character "

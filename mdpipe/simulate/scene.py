@@ -14,6 +14,7 @@ import yaml
 
 from mdpipe.errors import ParameterError
 from mdpipe.params import RadarParams
+from mdpipe.simulate.plausibility import check_scene
 from mdpipe.simulate.schema import NON_NEGATIVE, POSITIVE, build, check, short_repr
 from mdpipe.simulate.targets import KINDS
 
@@ -21,6 +22,7 @@ RADARLOG_RX_SPACING_M = 1.948e-3
 MIN_CARRIER_HZ = 1e8
 MAX_FRACTIONAL_BANDWIDTH = 0.2
 MAX_SNR_DB = 100.0
+MAX_SCENE_BYTES = 10_000_000
 SNR_RANGE = check(lambda v: -MAX_SNR_DB <= v <= MAX_SNR_DB, f"within [-{MAX_SNR_DB:g}, {MAX_SNR_DB:g}] dB")
 
 
@@ -162,8 +164,6 @@ def scene_from_mapping(data):
     rest = {k: v for k, v in data.items() if k != "targets"}
     scene = build(Scene, rest, "")
     scene = dataclasses.replace(scene, targets=_targets(data.get("targets"), "targets"))
-    from mdpipe.simulate.plausibility import check_scene
-
     check_scene(scene)
     return scene
 
@@ -184,11 +184,13 @@ def load_scene_mapping(path):
     """Read a scene YAML file into a plain mapping (a separate step so CLI overrides apply before validation)."""
     try:
         with open(path, "rb") as fh:
-            raw = fh.read()
+            raw = fh.read(MAX_SCENE_BYTES + 1)
     except OSError as exc:
         raise ParameterError(f"{path}: cannot read ({exc.strerror})") from None
+    if len(raw) > MAX_SCENE_BYTES:
+        raise ParameterError(f"{path}: over {MAX_SCENE_BYTES // 1_000_000} MB, too large to be a scene YAML")
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         raise ParameterError(f"{path}: not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset {exc.start}); "
                              "save the scene as UTF-8") from None
@@ -197,7 +199,7 @@ def load_scene_mapping(path):
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
-        problem = exc.problem or exc.context or "syntax error"
+        problem = " ".join((exc.problem or exc.context or "syntax error").split())
         raise ParameterError(f"{path}: not valid YAML{where} ({problem})") from None
     except yaml.YAMLError as exc:
         raise ParameterError(f"{path}: not valid YAML ({str(exc).splitlines()[0]})") from None

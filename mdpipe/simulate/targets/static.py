@@ -5,7 +5,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mdpipe.simulate.schema import POSITIVE
-from mdpipe.simulate.targets.common import Echo, amplitude_bound_v, carrier
+from mdpipe.simulate.targets.common import Echo, carrier
+from mdpipe.simulate.targets.point import (  # noqa: F401 (one point scatterer: a point's draws, bounds, truth)
+    micro_doppler_bound_hz, peak_amplitude_v, realize, truth)
 
 
 @dataclass(frozen=True)
@@ -26,10 +28,6 @@ class Target:
         return self.range_m * np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
 
 
-def realize(target, *, seed, index, duration_s):
-    return None
-
-
 def body_track(target, realization, t_s):
     shape = np.shape(t_s) + (3,)
     return np.broadcast_to(target.position_m, shape), np.zeros(shape)
@@ -41,15 +39,3 @@ def echo(target, realization, t_s, *, f0_hz):
     value = np.sqrt(target.rcs_m2) / target.range_m**2 * carrier(target.range_m, f0_hz)
     return Echo(np.full(shape, value, dtype=np.complex128), np.full(shape, target.range_m),
                 np.broadcast_to(target.position_m / target.range_m, shape + (3,)))
-
-
-def micro_doppler_bound_hz(target, realization, *, wavelength_m):
-    return 0.0
-
-
-def peak_amplitude_v(target, realization, min_range_m):
-    return amplitude_bound_v(np.sqrt(target.rcs_m2), 0.0, min_range_m)
-
-
-def truth(target, realization, *, radar, n_chirps, body_doppler_hz):
-    return {}
