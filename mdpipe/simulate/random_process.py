@@ -16,7 +16,7 @@ import numpy as np
 
 COMPONENTS = 32
 GRID_STEPS_PER_CORRELATION = 20
-MAX_GRID = 1_000_000
+MAX_GRID = 100_000
 TAG = 0x6D64  # keeps target draws apart from the noise streams of the same seed
 
 
@@ -83,9 +83,9 @@ class SmoothProcess:
         return float(self.gain[series] * np.sum(2.0 * np.pi * np.abs(self.freqs_hz[series])))
 
     def max_abs(self, series):
-        """Bound on ``|w(t)|`` over the capture: the largest grid value plus half a grid step times the slope bound."""
+        """Bound on ``|w(t)|`` over the capture: the largest value on a grid plus half a grid step times the slope
+        bound, or the sum of the components' amplitudes if that is smaller (long captures, coarse grids)."""
         n = int(min(MAX_GRID, np.ceil(GRID_STEPS_PER_CORRELATION * self.duration_s / self.correlation_s) + 1))
-        n = max(n, 2)
-        t = np.linspace(0.0, self.duration_s, n)
-        step = t[1] - t[0]
-        return float(np.max(np.abs(self.value(t, series))) + 0.5 * step * self.slope_bound(series))
+        t = np.linspace(0.0, self.duration_s, max(n, 2))
+        on_grid = np.max(np.abs(self.value(t, series))) + 0.5 * (t[1] - t[0]) * self.slope_bound(series)
+        return float(min(on_grid, self.gain[series] * COMPONENTS + abs(self.shift[series])))

@@ -217,13 +217,15 @@ def truth(target, realization, *, radar, n_chirps, body_doppler_hz):
     point_doppler = doppler_hz(np.gradient(ranges, t_s, axis=0), wavelength_m=radar.wavelength_m)
     spread = point_doppler.max(axis=1) - point_doppler.min(axis=1)
     drift = target.wingbeat_drift_fraction
+    start_hz, end_hz = bird_physics.wingbeat_rate_hz([0.0, duration_s], wingbeat_hz=target.wingbeat_hz,
+                                                     drift_fraction=drift, duration_s=duration_s)
     fg = target.flap_glide
     return {
         "wingbeat_freq_hz": target.wingbeat_hz,
         "wingbeat_period_s": 1.0 / target.wingbeat_hz,
         "wingbeat_drift_fraction": drift,
-        "wingbeat_start_hz": target.wingbeat_hz * (1.0 - 0.5 * drift),
-        "wingbeat_end_hz": target.wingbeat_hz * (1.0 + 0.5 * drift),
+        "wingbeat_start_hz": float(start_hz),
+        "wingbeat_end_hz": float(end_hz),
         "flapping_share": 1.0 if fg is None else bird_physics.flapping_share(duration_s, flap_s=fg.flap_s,
                                                                              glide_s=fg.glide_s),
         "flap_s": None if fg is None else fg.flap_s,
