@@ -167,7 +167,8 @@ def test_tilt_adds_to_the_elevation_and_body_scatterers_add_their_echo():
     np.testing.assert_array_equal(echo_at(plan_of(scene_mapping(XBAND, [tilted])), t),
                                   echo_at(plan_of(scene_mapping(XBAND, [level])), t))
     body = rotor_target(rev=80.0) | {"body_scatterers": [{"offset_m": [0.1, 0.0, 0.0], "rcs_m2": 0.04}]}
-    extra = echo_at(plan_of(scene_mapping(XBAND, [body])), t) - echo_at(plan_of(scene_mapping(XBAND, [rotor_target()])), t)
+    bare = echo_at(plan_of(scene_mapping(XBAND, [rotor_target()])), t)
+    extra = echo_at(plan_of(scene_mapping(XBAND, [body])), t) - bare
     expected = 0.2 / 30.0**2 * np.exp(-4j * np.pi * 30.1 / LAMBDA0)
     np.testing.assert_allclose(extra, expected, rtol=1e-9)
 
@@ -339,3 +340,14 @@ def test_rotor_line_weights_predict_an_imbalanced_tapered_three_blade_rotor(tmp_
     assert np.max(np.abs(measured[m % 3 != 0])) > 0.05 * np.max(np.abs(measured))
     equal = rotor.blade_gain_factor(m, [1.0, 1.0, 1.0])
     np.testing.assert_allclose(equal, np.where(m % 3 == 0, 3.0, 0.0), atol=1e-12)
+
+
+def test_points_profile_named_or_implied_by_points_per_blade_is_eq1():
+    named = rotor_target(rev=80.0)
+    named["rotors"] |= {"blade_profile": "points", "points_per_blade": 4}
+    implied = rotor_target(rev=80.0, points_per_blade=4)
+    t = np.linspace(0, 0.0125, 501)
+    a, b = plan_of(scene_mapping(XBAND, [named])), plan_of(scene_mapping(XBAND, [implied]))
+    np.testing.assert_array_equal(echo_at(a, t), echo_at(b, t))
+    assert a.target.rotors.profile == b.target.rotors.profile == "points"
+    assert not np.allclose(echo_at(a, t), echo_at(plan_of(scene_mapping(XBAND, [rotor_target(rev=80.0)])), t))

@@ -210,7 +210,7 @@ def bessel_line_weights(harmonics, *, radius_m, wavelength_m, n_blades, elevatio
 
 
 def blade_gain_factor(harmonics, blade_gains):
-    """How blade gains g_k (blade k at angle ``theta + 2 pi k / N``) weigh line m: ``G_m = sum_k g_k exp(j 2 pi m k / N)``.
+    """How blade gains g_k (blade k at ``theta + 2 pi k / N``) weigh line m: ``G_m = sum_k g_k exp(j 2 pi m k / N)``.
 
     Equal gains g give ``N g`` at multiples of N and 0 elsewhere (Eq. 5's chopping comb); unequal gains
     (an imbalance, a tag) leave lines at every multiple of the rotation rate.

@@ -26,7 +26,9 @@ def target_rng(seed, index, purpose):
 
 
 def _cos_integral(rate, phase, duration_s):
-    """``int_0^D cos(rate t + phase) dt = D cos(phase + rate D / 2) sinc(rate D / (2 pi))`` elementwise (no cancellation)."""
+    """``int_0^D cos(rate t + phase) dt = D cos(phase + rate D / 2) sinc(rate D / (2 pi))``, elementwise.
+
+    Written this way it has no cancellation as ``rate D`` goes to 0."""
     half = 0.5 * rate * duration_s
     return duration_s * np.cos(phase + half) * np.sinc(half / np.pi)
 
