@@ -77,7 +77,11 @@ class SmoothProcess:
         t = np.asarray(t_s, dtype=np.float64)
         out = np.zeros_like(t)
         for f, phi in zip(self.freqs_hz[series], self.phases_rad[series]):
-            out += _cos_integral(2.0 * np.pi * f, phi, t)
+            if f == 0.0:
+                out += t * np.cos(phi)
+            else:  # 2 sin(w t / 2) cos(phi + w t / 2) / w: no cancellation as w t goes to 0
+                half = np.pi * f * t
+                out += np.sin(half) * np.cos(phi + half) / (np.pi * f)
         return self.gain[series] * out - self.shift[series] * t
 
     def slope_bound(self, series):
