@@ -89,6 +89,7 @@ def main():
 @click.option("--snr-db", type=float, help="Override noise: per-sample SNR of the moving targets, dB.")
 def simulate(config_path, out_path, seed, chirps, channels, snr_db):
     """Simulate the scene in CONFIG and write a Radarlog capture with its expected answer."""
+    from mdpipe.simulate.plausibility import scene_warnings
     from mdpipe.simulate.run import simulate_to_file
     from mdpipe.simulate.scene import load_scene_mapping, scene_from_mapping, scene_to_yaml
 
@@ -104,6 +105,8 @@ def simulate(config_path, out_path, seed, chirps, channels, snr_db):
         if snr_db is not None:
             data["noise"] = {"snr_db": snr_db}
     scene = scene_from_mapping(data)
+    for warning in scene_warnings(scene):
+        click.echo(f"warning: {warning}", err=True)
     out_path = out_path or Path(config_path.stem + ".h5")
     radar = scene.radar
     total = radar.n_chirps * radar.n_samples * radar.n_channels

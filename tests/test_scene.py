@@ -45,8 +45,8 @@ def with_change(path, value):
     (("targets", 0, "motion", "position_m"), [1, 2], r"^targets\[0\]\.motion\.position_m: expected a list of 3 numbers"),
     (("targets", 0, "motion", "position_m"), [0, 0, 0], r"^targets\[0\]\.motion: position_m must not be the radar's own"),
     (("targets", 0, "elevation_deg"), 95, r"^targets\[0\]\.elevation_deg: must be within \[-90, 90\], got 95\.0$"),
-    (("targets", 0, "type"), "plane", r"^targets\[0\]\.type: unknown target type 'plane' \(one of multirotor, bird, point, static\)$"),
-    (("targets", 0, "type"), KeyError, r"^targets\[0\]\.type: missing \(one of multirotor, bird, point, static\)$"),
+    (("targets", 0, "type"), "plane", r"^targets\[0\]\.type: unknown target type 'plane' \(one of multirotor, bird, point, static, branch\)$"),
+    (("targets", 0, "type"), KeyError, r"^targets\[0\]\.type: missing \(one of multirotor, bird, point, static, branch\)$"),
     (("targets", 0, "motion"), "here", r"^targets\[0\]\.motion: expected a mapping of keys to values, got 'here'$"),
     (("targets",), {"a": 1}, r"^targets: expected a list of targets"),
 ])

@@ -28,10 +28,61 @@ def flap_angles_rad(t_s, *, wingbeat_hz, a1_deg, a2_deg, psi10_deg, psi20_deg, c
     psi1, psi2, phi2 : ndarray, rad, shape of ``t_s``
     """
     beat = np.cos(2.0 * np.pi * wingbeat_hz * np.asarray(t_s, dtype=np.float64))
+    return flap_angles_from_beat_rad(beat, a1_deg=a1_deg, a2_deg=a2_deg, psi10_deg=psi10_deg, psi20_deg=psi20_deg,
+                                     c2_deg=c2_deg, phi20_deg=phi20_deg)
+
+
+def flap_angles_from_beat_rad(beat, *, a1_deg, a2_deg, psi10_deg, psi20_deg, c2_deg, phi20_deg):
+    """Wing angles of Eqs. 7-9 for a given stroke ``beat`` in [-1, 1] (``cos(2 pi f t)`` for steady flapping;
+    ``envelope(t) cos(phase(t))`` for flap-glide bursts and drifting wingbeats; 0 is the mean pose)."""
     psi1 = np.deg2rad(a1_deg * beat + psi10_deg)
     psi2 = np.deg2rad(a2_deg * beat + psi20_deg)
     phi2 = np.deg2rad(c2_deg * beat + phi20_deg)
     return psi1, psi2, phi2
+
+
+def wingbeat_rate_hz(t_s, *, wingbeat_hz, drift_fraction, duration_s):
+    """Wingbeat frequency drifting linearly, ``f(t) = f0 (1 + d (t / D - 1/2))``.
+
+    It changes by ``d f0`` across the dwell ``[0, D]`` and its mean over the dwell is ``f0``.
+    """
+    return wingbeat_hz * (1.0 + drift_fraction * (np.asarray(t_s, dtype=np.float64) / duration_s - 0.5))
+
+
+def wingbeat_phase_rad(t_s, *, wingbeat_hz, drift_fraction, duration_s):
+    """Integral of :func:`wingbeat_rate_hz` times 2 pi from 0 to ``t_s``: ``2 pi f0 (t + d (t^2 / (2 D) - t / 2))``."""
+    t = np.asarray(t_s, dtype=np.float64)
+    return 2.0 * np.pi * wingbeat_hz * (t + drift_fraction * (t * t / (2.0 * duration_s) - 0.5 * t))
+
+
+def flap_glide_ramp_s(*, wingbeat_hz, flap_s, glide_s):
+    """Length of the smooth transition between flapping and gliding: one wingbeat, at most half a burst."""
+    return min(1.0 / wingbeat_hz, 0.5 * flap_s, 0.5 * glide_s)
+
+
+def flap_glide_envelope(t_s, *, flap_s, glide_s, ramp_s):
+    """Stroke envelope of flap-glide flight: 1 while flapping, 0 while gliding (wings at the mean pose).
+
+    Bursts repeat every ``flap_s + glide_s``: flapping on ``[0, flap_s)`` of each cycle. Each switch is
+    a raised-sine ramp ``(1 +- sin(pi s / ramp_s)) / 2`` over ``|s| <= ramp_s / 2`` around it, so the
+    envelope and its slope are continuous, it crosses 1/2 exactly at the switches (the time spent
+    above 1/2 is ``flap_s`` a cycle) and ``|d envelope / dt| <= pi / (2 ramp_s)``.
+    """
+    period = flap_s + glide_s
+    u = np.mod(np.asarray(t_s, dtype=np.float64), period)
+    to_start = np.mod(u + 0.5 * period, period) - 0.5 * period  # signed time from the nearest burst start
+    to_end = u - flap_s
+    half = 0.5 * ramp_s
+    envelope = np.where(u < flap_s, 1.0, 0.0)
+    envelope = np.where(np.abs(to_end) <= half, 0.5 * (1.0 - np.sin(np.pi * to_end / ramp_s)), envelope)
+    return np.where(np.abs(to_start) <= half, 0.5 * (1.0 + np.sin(np.pi * to_start / ramp_s)), envelope)
+
+
+def flapping_share(duration_s, *, flap_s, glide_s):
+    """Fraction of ``[0, duration_s]`` spent flapping (envelope above 1/2) in :func:`flap_glide_envelope`."""
+    period = flap_s + glide_s
+    cycles, rest = divmod(duration_s, period)
+    return (cycles * flap_s + min(rest, flap_s)) / duration_s
 
 
 def wing_joints_m(psi1_rad, psi2_rad, phi2_rad, *, upper_arm_m, forearm_m):

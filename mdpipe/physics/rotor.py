@@ -41,9 +41,75 @@ def segment_echo(range_a_m, range_b_m, *, length_m, wavelength_m):
     return length_m * np.exp(-2j * np.pi * (ra + rb) / wavelength_m) * np.sinc(2.0 * (rb - ra) / wavelength_m)
 
 
+def tapered_segment_echo(range_a_m, range_b_m, *, length_m, wavelength_m, end_reflectivity):
+    """Closed-form echo of a straight segment whose reflectivity falls linearly from 1 at end a to
+    ``end_reflectivity`` at end b (ranges linear along it, as in :func:`segment_echo`).
+
+    With ``w`` in [-1/2, 1/2] along the segment, ``a(w) = abar + delta w`` (``abar = (1 + e) / 2``,
+    ``delta = e - 1``) and ``y = 2 pi (Rb - Ra) / lambda``, the integral is
+    ``L exp(-j 2 pi (Ra + Rb) / lambda) [abar j0(y) - (j / 2) delta j1(y)]`` with the spherical Bessel
+    functions ``j0(y) = sin y / y`` and ``j1(y) = (sin y - y cos y) / y^2``. ``end_reflectivity = 1``
+    is the uniform segment.
+    """
+    ra = np.asarray(range_a_m, dtype=np.float64)
+    rb = np.asarray(range_b_m, dtype=np.float64)
+    y = 2.0 * np.pi * (rb - ra) / wavelength_m
+    mean = 0.5 * (1.0 + end_reflectivity)
+    slope = end_reflectivity - 1.0
+    j0 = np.sinc(y / np.pi)
+    return length_m * np.exp(-2j * np.pi * (ra + rb) / wavelength_m) * (mean * j0 - 0.5j * slope * spherical_j1(y))
+
+
+def spherical_j1(y):
+    """Spherical Bessel function ``j1(y) = (sin y - y cos y) / y^2`` (series near 0, where the difference cancels)."""
+    y = np.asarray(y, dtype=np.float64)
+    small = np.abs(y) < 0.1
+    safe = np.where(small, 1.0, y)
+    direct = (np.sin(safe) - safe * np.cos(safe)) / safe**2
+    y2 = y * y
+    series = y / 3.0 * (1.0 - y2 / 10.0 * (1.0 - y2 / 28.0 * (1.0 - y2 / 54.0)))
+    return np.where(small, series, direct)
+
+
+BLADE_PROFILES = ("uniform", "tapered", "points")
+
+
+def blade_echoes(theta_rad, *, blade_length_m, wavelength_m, elevation_deg=0.0, root_m=0.0, profile="uniform",
+                 tip_reflectivity=1.0, points_per_blade=None):
+    """Echo of each blade relative to its hub for blade angles ``theta_rad`` (..., n_blades).
+
+    ``profile`` chooses the reflectivity along the span: ``uniform`` (closed-form line integral,
+    :func:`segment_echo`), ``tapered`` (amplitude falling linearly from 1 at the root to
+    ``tip_reflectivity`` at the tip, :func:`tapered_segment_echo`) or ``points`` (the paper's Eq. 1:
+    ``points_per_blade`` = Q equal points at the mid-points of Q equal pieces, each of amplitude
+    ``(tip - root) / Q``). A uniform blade seen broadside has magnitude ``tip - root`` (m).
+
+    Returns
+    -------
+    ndarray, complex128, shape of ``theta_rad``
+    """
+    if not 0.0 <= root_m < blade_length_m:
+        raise ParameterError(f"root_m={root_m!r} must lie in [0, blade_length_m={blade_length_m!r})")
+    if profile not in BLADE_PROFILES:
+        raise ParameterError(f"blade profile {profile!r} must be one of {', '.join(BLADE_PROFILES)}")
+    projection = np.cos(np.deg2rad(elevation_deg)) * np.cos(theta_rad)  # (..., n_blades)
+    span_m = blade_length_m - root_m
+    if profile == "uniform":
+        return segment_echo(root_m * projection, blade_length_m * projection, length_m=span_m,
+                            wavelength_m=wavelength_m)
+    if profile == "tapered":
+        return tapered_segment_echo(root_m * projection, blade_length_m * projection, length_m=span_m,
+                                    wavelength_m=wavelength_m, end_reflectivity=tip_reflectivity)
+    if points_per_blade is None or int(points_per_blade) != points_per_blade or points_per_blade < 1:
+        raise ParameterError(f"points_per_blade={points_per_blade!r} must be an integer >= 1")
+    rho_m = root_m + span_m * (np.arange(points_per_blade) + 0.5) / points_per_blade
+    phase = (-4j * np.pi / wavelength_m) * projection[..., None] * rho_m
+    return (span_m / points_per_blade) * np.exp(phase).sum(axis=-1)
+
+
 def rotor_echo(t_s, *, rotation_rate_hz, n_blades, blade_length_m, wavelength_m, elevation_deg=0.0,
                root_m=0.0, phase0_rad=0.0, points_per_blade=None):
-    """Echo of one rotor relative to its hub, summed over its blades.
+    """Echo of one rotor turning at a constant rate, relative to its hub, summed over its blades.
 
     Parameters
     ----------
@@ -65,27 +131,18 @@ def rotor_echo(t_s, *, rotation_rate_hz, n_blades, blade_length_m, wavelength_m,
         Angle of blade 0 at t = 0.
     points_per_blade : int or None
         None for the closed-form line integral (:func:`segment_echo`); an integer Q for the paper's
-        Eq. 1 with Q point scatterers per blade at the mid-points of Q equal pieces, each of
-        amplitude ``(tip - root) / Q``, which converges to the closed form as Q grows.
+        Eq. 1 with Q point scatterers per blade (see :func:`blade_echoes`), which converges to the
+        closed form as Q grows.
 
     Returns
     -------
     ndarray, complex128, shape of ``t_s``
     """
-    if not 0.0 <= root_m < blade_length_m:
-        raise ParameterError(f"root_m={root_m!r} must lie in [0, blade_length_m={blade_length_m!r})")
     theta = blade_angles_rad(t_s, rotation_rate_hz=rotation_rate_hz, n_blades=n_blades, phase0_rad=phase0_rad)
-    projection = np.cos(np.deg2rad(elevation_deg)) * np.cos(theta)  # (..., n_blades)
-    span_m = blade_length_m - root_m
-    if points_per_blade is None:
-        echo = segment_echo(root_m * projection, blade_length_m * projection, length_m=span_m,
-                            wavelength_m=wavelength_m)
-        return echo.sum(axis=-1)
-    if int(points_per_blade) != points_per_blade or points_per_blade < 1:
-        raise ParameterError(f"points_per_blade={points_per_blade!r} must be an integer >= 1")
-    rho_m = root_m + span_m * (np.arange(points_per_blade) + 0.5) / points_per_blade
-    phase = (-4j * np.pi / wavelength_m) * projection[..., None] * rho_m
-    return (span_m / points_per_blade) * np.exp(phase).sum(axis=(-1, -2))
+    return blade_echoes(theta, blade_length_m=blade_length_m, wavelength_m=wavelength_m,
+                        elevation_deg=elevation_deg, root_m=root_m,
+                        profile="uniform" if points_per_blade is None else "points",
+                        points_per_blade=points_per_blade).sum(axis=-1)
 
 
 def chopping_frequency_hz(rotation_rate_hz, *, n_blades):
@@ -150,3 +207,48 @@ def bessel_line_weights(harmonics, *, radius_m, wavelength_m, n_blades, elevatio
     gamma = 4.0 * np.pi * radius_m * np.cos(np.deg2rad(elevation_deg)) / wavelength_m
     weight = n_blades * special.jv(m, gamma) * np.exp(1j * m * (phase0_rad - np.pi / 2))
     return np.where(m % n_blades == 0, weight, 0.0)
+
+
+def blade_gain_factor(harmonics, blade_gains):
+    """How blade gains g_k (blade k at ``theta + 2 pi k / N``) weigh line m: ``G_m = sum_k g_k exp(j 2 pi m k / N)``.
+
+    Equal gains g give ``N g`` at multiples of N and 0 elsewhere (Eq. 5's chopping comb); unequal gains
+    (an imbalance, a tag) leave lines at every multiple of the rotation rate.
+    """
+    gains = np.asarray(blade_gains, dtype=np.float64)
+    k = np.arange(len(gains))
+    m = np.asarray(harmonics)
+    return np.sum(gains * np.exp(2j * np.pi * np.multiply.outer(m, k) / len(gains)), axis=-1)
+
+
+def rotor_line_weights(harmonics, *, blade_gains, blade_length_m, wavelength_m, elevation_deg=0.0, root_m=0.0,
+                       profile="uniform", tip_reflectivity=1.0, points_per_blade=None, phase0_rad=0.0,
+                       samples=4000):
+    """Complex weights of the spectral lines of one rotor's echo (normalised as :func:`blade_echoes`; line m sits at
+    m times the signed rotation rate).
+
+    A blade is a set of points at radius rho with reflectivity a(rho); each contributes
+    ``J_m(Gamma(rho)) exp(j m (phase0 - pi/2))`` to line m (Eqs. 2-4, ``Gamma = 4 pi rho cos(beta) / lambda``), so
+    one blade gives ``c_m = exp(j m (phase0 - pi/2)) int a(rho) J_m(Gamma(rho)) d rho`` over its span (midpoint rule
+    on ``samples`` pieces for ``uniform`` and ``tapered``; the Q points themselves for ``points``), and the rotor
+    ``c_m G_m`` (:func:`blade_gain_factor`; one gain per blade, ``len(blade_gains)`` = N).
+
+    Returns
+    -------
+    ndarray, complex128, shape of ``harmonics``
+    """
+    from scipy import special  # an oracle: keeps scipy.special off the processing path's imports
+
+    m = np.asarray(harmonics)
+    span_m = blade_length_m - root_m
+    if profile == "points":
+        n = points_per_blade
+        reflectivity = np.ones(n)
+    else:
+        n = samples
+        reflectivity = 1.0 - (1.0 - (tip_reflectivity if profile == "tapered" else 1.0)) * (np.arange(n) + 0.5) / n
+    rho_m = root_m + span_m * (np.arange(n) + 0.5) / n
+    gamma = 4.0 * np.pi * rho_m * np.cos(np.deg2rad(elevation_deg)) / wavelength_m
+    integral = (special.jv(m[..., None], gamma) * reflectivity).sum(axis=-1) * span_m / n
+    return integral * np.exp(1j * m * (phase0_rad - np.pi / 2)) * blade_gain_factor(m, blade_gains)
+

@@ -20,7 +20,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from mdpipe.physics import kinematics
-from mdpipe.simulate.echoes import max_doppler_hz
+from mdpipe.simulate.targets import module_of
+from mdpipe.simulate.targets.common import max_speed_doppler_hz
 
 
 @dataclass(frozen=True)
@@ -51,7 +52,13 @@ def nodes_for_tolerance(cycles, tolerance, n_samples):
     return k
 
 
-def choose_model(target, *, radar, position_m, velocity_mps, fidelity, chunk_chirps):
+def max_doppler_hz(target, realization, position_m, velocity_mps, *, wavelength_m):
+    """Bound on |Doppler| of any scatterer of the target: its body track's (T, 3) plus its kind's micro-Doppler."""
+    body = max_speed_doppler_hz(position_m, velocity_mps, wavelength_m=wavelength_m)
+    return body + module_of(target).micro_doppler_bound_hz(target, realization, wavelength_m=wavelength_m)
+
+
+def choose_model(target, realization, *, radar, position_m, velocity_mps, fidelity, chunk_chirps):
     """Decide the :class:`TargetModel` of ``target`` from its body track (T, 3) at the chirps, and the radar."""
     ranges = kinematics.range_m(position_m)
     travel_bins = float(np.max(np.abs(ranges - ranges.mean())) / radar.range_bin_m)
@@ -64,7 +71,7 @@ def choose_model(target, *, radar, position_m, velocity_mps, fidelity, chunk_chi
     if migration:
         speed = float(np.max(np.linalg.norm(velocity_mps, axis=-1)))
         chunk_travel_bins = speed * chunk_chirps * radar.chirp_period_s / radar.range_bin_m
-    cycles = max_doppler_hz(target, position_m, velocity_mps, wavelength_m=radar.wavelength_m) \
+    cycles = max_doppler_hz(target, realization, position_m, velocity_mps, wavelength_m=radar.wavelength_m) \
         * radar.sampled_duration_s
     cycles += chunk_travel_bins
     if fidelity.in_chirp_motion == "off":

@@ -10,7 +10,7 @@ from threadpoolctl import threadpool_limits
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import INT16_FULL_SCALE, CaptureWriter
-from mdpipe.simulate.echoes import peak_amplitude_v, target_echo
+from mdpipe.simulate.targets import module_of, target_echo
 from mdpipe.simulate.noise import noise_streams, standard_normal_f32
 from mdpipe.simulate.synth import CHUNK_CHIRPS, if_factors, plan_targets
 from mdpipe.simulate.truth import expected_features
@@ -20,32 +20,38 @@ NOISE_PEAK_SIGMAS = 7.0  # P(|n| > 7 sigma) = 2.6e-12 per sample: ~0.002 clipped
 POWER_SAMPLES = 20000
 
 
-def moving_signal_power_v2(plans, radar, n_chirps):
-    """Mean IF power (V^2) of the drones and birds, per sample and channel (a real IF has |s|^2 / 2)."""
+def target_powers_v2(plans, radar, n_chirps):
+    """Each target's mean IF power (V^2, per sample and channel; a real IF has |s|^2 / 2): of its whole echo,
+    and of its moving part (the echo minus its slow-time mean over the capture), as a list of pairs."""
     t_s = np.linspace(0, n_chirps - 1, min(n_chirps, POWER_SAMPLES)) * radar.chirp_period_s
-    power = 0.0
+    powers = []
     for plan in plans:
-        if plan.target.kind != "static":
-            power += 0.5 * float(np.mean(np.abs(target_echo(plan.target, t_s, f0_hz=radar.f_start_hz).signal) ** 2))
-    return power
+        signal = target_echo(plan.target, plan.realization, t_s, f0_hz=radar.f_start_hz).signal
+        powers.append((0.5 * float(np.mean(np.abs(signal) ** 2)),
+                       0.5 * float(np.mean(np.abs(signal - signal.mean()) ** 2))))
+    return powers
 
 
 def peak_signal_v(plans):
     """Bound on the noise-free IF magnitude over the whole capture."""
-    return sum(peak_amplitude_v(p.target, p.min_range_m) for p in plans)
+    return sum(module_of(p.target).peak_amplitude_v(p.target, p.realization, p.min_range_m) for p in plans)
 
 
-def noise_sigma_v(scene, plans):
-    """Noise standard deviation per sample from the scene's ``noise`` block."""
-    noise = scene.noise
+def noise_sigma_v(noise, plans, powers_v2):
+    """Noise standard deviation per sample from the scene's ``noise`` block and the targets' powers."""
     if noise.sigma_v is not None:
         return noise.sigma_v
-    if noise.snr_db is None:
+    moving = [power for plan, power in zip(plans, powers_v2) if plan.target.kind != "static"]
+    if noise.snr_db is not None:
+        power, snr_db, name = sum(whole for whole, _ in moving), noise.snr_db, "snr_db"
+    elif noise.moving_snr_db is not None:
+        power, snr_db, name = sum(part for _, part in moving), noise.moving_snr_db, "moving_snr_db"
+    else:
         return 0.0
-    power = moving_signal_power_v2(plans, scene.radar.params, scene.radar.n_chirps)
     if power == 0.0:
-        raise ParameterError("noise.snr_db: needs a moving target (drone or bird) to refer to; use noise.sigma_v")
-    return float(np.sqrt(power / 10 ** (noise.snr_db / 10)))
+        raise ParameterError(f"noise.{name}: needs a moving target (drone, bird, point or branch) with a moving "
+                             "part to refer to; use noise.sigma_v")
+    return float(np.sqrt(power / 10 ** (snr_db / 10)))
 
 
 def synthesize_channel(lhs, rhs, out, *, sigma_lsb, rng):
@@ -93,7 +99,8 @@ def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps
     """
     radar, n_chirps = scene.radar.params, scene.radar.n_chirps
     plans = plan_targets(scene, chunk_chirps=chunk_chirps)
-    sigma_v = noise_sigma_v(scene, plans)
+    powers_v2 = target_powers_v2(plans, radar, n_chirps)
+    sigma_v = noise_sigma_v(scene.noise, plans, powers_v2)
     if scene.adc.full_scale_v is not None:
         lsb_v = scene.adc.full_scale_v / INT16_FULL_SCALE
     else:
@@ -133,10 +140,11 @@ def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps
                 progress(rows)
         if pending is not None:
             pending.result()
-        truth = expected_features(scene, plans)
+        truth = expected_features(scene, plans, powers_v2=powers_v2, sigma_v=sigma_v)
         truth["simulation"] = {
             "mdpipe_version": __version__, "seed": scene.seed, "noise_sigma_v": sigma_v,
-            "snr_db_per_sample": scene.noise.snr_db, "lsb_v": lsb_v, "clipped_samples": clipped,
+            "snr_db_per_sample": scene.noise.snr_db, "moving_snr_db_per_sample": scene.noise.moving_snr_db,
+            "lsb_v": lsb_v, "clipped_samples": clipped,
             "n_channels": radar.n_channels,
         }
         writer.write_truth(scene_yaml=scene_yaml, expected=truth)

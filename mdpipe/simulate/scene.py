@@ -14,9 +14,16 @@ import yaml
 
 from mdpipe.errors import ParameterError
 from mdpipe.params import RadarParams
-from mdpipe.simulate.schema import NON_NEGATIVE, POSITIVE, Vec3, build, check
+from mdpipe.simulate.plausibility import check_scene
+from mdpipe.simulate.schema import NON_NEGATIVE, POSITIVE, build, check, short_repr
+from mdpipe.simulate.targets import KINDS
 
 RADARLOG_RX_SPACING_M = 1.948e-3
+MIN_CARRIER_HZ = 1e8
+MAX_FRACTIONAL_BANDWIDTH = 0.2
+MAX_SNR_DB = 100.0
+MAX_SCENE_BYTES = 10_000_000
+SNR_RANGE = check(lambda v: -MAX_SNR_DB <= v <= MAX_SNR_DB, f"within [-{MAX_SNR_DB:g}, {MAX_SNR_DB:g}] dB")
 
 
 @dataclass(frozen=True)
@@ -39,7 +46,17 @@ class RadarConfig:
         if self.rx_positions_m is not None and len(self.rx_positions_m) < self.n_channels:
             raise ParameterError(
                 f"rx_positions_m lists {len(self.rx_positions_m)} positions for n_channels={self.n_channels}")
-        self.params  # validates the chirp parameters
+        params = self.params  # validates the chirp parameters
+        for name in ("f_start_hz", "f_stop_hz"):
+            value = getattr(self, name)
+            if value < MIN_CARRIER_HZ:
+                raise ParameterError(f"{name}={value:g} Hz is not a radar carrier (at least {MIN_CARRIER_HZ:g} Hz); "
+                                     f"did you mean {value:g}e9?")
+        share = params.bandwidth_hz / params.centre_hz
+        if share > MAX_FRACTIONAL_BANDWIDTH:
+            raise ParameterError(f"the sweep is {params.bandwidth_hz / 1e9:.4g} GHz wide, {100 * share:.0f} % of its "
+                                 f"{params.centre_hz / 1e9:.4g} GHz centre (at most "
+                                 f"{100 * MAX_FRACTIONAL_BANDWIDTH:.0f} %); check f_start_hz and f_stop_hz")
 
     @property
     def params(self):
@@ -56,154 +73,37 @@ class RadarConfig:
         )
 
 
-@dataclass(frozen=True)
-class Motion:
-    """Straight-line motion plus an optional sway ``a (cos(2 pi t / T + phase) - cos(phase))``."""
-
-    position_m: Vec3
-    velocity_mps: Vec3 = (0.0, 0.0, 0.0)
-    sway_amplitude_m: Vec3 = (0.0, 0.0, 0.0)
-    sway_period_s: float = field(default=float("inf"), metadata=POSITIVE)
-    sway_phase_deg: float = 0.0
-
-    def __post_init__(self):
-        if np.linalg.norm(self.position_m) == 0:
-            raise ParameterError("position_m must not be the radar's own position [0, 0, 0]")
-
-    @property
-    def kwargs(self):
-        """Keyword arguments of :func:`mdpipe.physics.kinematics.body_position_m`."""
-        return dict(start_m=np.array(self.position_m), velocity_mps=np.array(self.velocity_mps),
-                    sway_amplitude_m=np.array(self.sway_amplitude_m), sway_period_s=self.sway_period_s,
-                    sway_phase_rad=np.deg2rad(self.sway_phase_deg))
-
-
-@dataclass(frozen=True)
-class Rotors:
-    """The rotors of a multirotor; per-rotor entries take one value for all or one per rotor."""
-
-    count: int = field(metadata=check(lambda v: v >= 1, ">= 1"))
-    blade_length_m: float = field(metadata=POSITIVE)
-    rev_per_s: tuple[float, ...] = field(metadata=check(lambda v: v != 0, "non-zero (sign = spin direction)"))
-    blades: int = field(default=2, metadata=check(lambda v: v >= 1, ">= 1"))
-    root_m: float = field(default=0.0, metadata=NON_NEGATIVE)
-    arm_m: float = field(default=0.0, metadata=NON_NEGATIVE)
-    layout_deg: Optional[tuple[float, ...]] = None
-    phase_deg: tuple[float, ...] = (0.0,)
-    blade_rcs_m2: float = field(default=1e-3, metadata=POSITIVE)
-    points_per_blade: Optional[int] = field(default=None, metadata=check(lambda v: v >= 1, ">= 1"))
-
-    def __post_init__(self):
-        if self.root_m >= self.blade_length_m:
-            raise ParameterError(f"root_m={self.root_m} must be shorter than blade_length_m={self.blade_length_m}")
-        for name in ("rev_per_s", "phase_deg", "layout_deg"):
-            values = getattr(self, name)
-            if values is not None and len(values) not in (1, self.count):
-                raise ParameterError(f"{name} has {len(values)} entries; give 1 or count={self.count}")
-
-    def per_rotor(self, name):
-        """Values of per-rotor entry ``name`` as an array of length ``count``."""
-        values = getattr(self, name)
-        if values is None:  # layout: evenly spaced, first arm at 45 deg (an X quad)
-            return 45.0 + 360.0 * np.arange(self.count) / self.count
-        return np.broadcast_to(np.asarray(values, dtype=np.float64), (self.count,))
-
-
-@dataclass(frozen=True)
-class Multirotor:
-    """A multirotor drone: a body scatterer and rotors in one plane seen at elevation beta."""
-
-    motion: Motion
-    rotors: Rotors
-    name: str = "drone"
-    elevation_deg: float = field(default=0.0, metadata=check(lambda v: -90 <= v <= 90, "within [-90, 90]"))
-    body_rcs_m2: float = field(default=1e-2, metadata=NON_NEGATIVE)
-    kind = "multirotor"
-
-
-@dataclass(frozen=True)
-class Bird:
-    """A flapping bird on a level straight flight (paper Eqs. 7-15; angles in degrees)."""
-
-    motion: Motion
-    wingbeat_hz: float = field(metadata=POSITIVE)
-    upper_arm_m: float = field(metadata=POSITIVE)
-    forearm_m: float = field(metadata=POSITIVE)
-    name: str = "bird"
-    a1_deg: float = 40.0
-    a2_deg: Optional[float] = None
-    psi10_deg: float = 15.0
-    psi20_deg: float = 20.0
-    c2_deg: float = 20.0
-    phi20_deg: float = 0.0
-    heading_deg: Optional[float] = None
-    body_rcs_m2: float = field(default=1e-2, metadata=NON_NEGATIVE)
-    wing_rcs_m2: float = field(default=5e-3, metadata=POSITIVE)
-    points_per_segment: int = field(default=3, metadata=check(lambda v: v >= 1, ">= 1"))
-    kind = "bird"
-
-    @property
-    def flap_kwargs(self):
-        """Keyword arguments of :func:`mdpipe.physics.bird.flap_angles_rad` (A2 defaults to A1)."""
-        return dict(wingbeat_hz=self.wingbeat_hz, a1_deg=self.a1_deg,
-                    a2_deg=self.a1_deg if self.a2_deg is None else self.a2_deg,
-                    psi10_deg=self.psi10_deg, psi20_deg=self.psi20_deg, c2_deg=self.c2_deg,
-                    phi20_deg=self.phi20_deg)
-
-    @property
-    def heading_rad(self):
-        """Flight direction in the horizontal plane: given, else along the horizontal velocity, else +x."""
-        if self.heading_deg is not None:
-            return np.deg2rad(self.heading_deg)
-        vx, vy, _ = self.motion.velocity_mps
-        return float(np.arctan2(vy, vx)) if (vx, vy) != (0.0, 0.0) else 0.0
-
-
-@dataclass(frozen=True)
-class Static:
-    """A fixed point scatterer (a tree, a mast)."""
-
-    range_m: float = field(metadata=POSITIVE)
-    name: str = "static"
-    azimuth_deg: float = 0.0
-    elevation_deg: float = 0.0
-    rcs_m2: float = field(default=1.0, metadata=POSITIVE)
-    kind = "static"
-
-    @property
-    def position_m(self):
-        az, el = np.deg2rad(self.azimuth_deg), np.deg2rad(self.elevation_deg)
-        return self.range_m * np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
-
-
-@dataclass(frozen=True)
-class Point:
-    """A moving point scatterer (a body without micro-motion)."""
-
-    motion: Motion
-    name: str = "point"
-    rcs_m2: float = field(default=1.0, metadata=POSITIVE)
-    kind = "point"
-
-
-TARGET_KINDS = {cls.kind: cls for cls in (Multirotor, Bird, Point, Static)}
+TARGET_KINDS = {kind: module.Target for kind, module in KINDS.items()}
 
 
 @dataclass(frozen=True)
 class Noise:
-    """Receiver noise: white Gaussian, independent per sample, chirp and channel.
+    """Receiver noise: white Gaussian, independent per sample, chirp and channel. Give at most one of:
 
-    ``snr_db`` is the mean IF power of the moving targets (drones, birds, points; not static clutter)
-    over the noise power, per sample and channel, before any processing gain; ``sigma_v`` sets
-    the noise standard deviation directly. Neither: no noise.
+    ``snr_db``
+        The mean IF power of all moving targets (multirotors, birds, points, branches; not static
+        clutter) over the noise power, per IF sample and channel, before any processing gain. The
+        whole echo counts, the body's included: a hovering drone's body line, which MTI removes,
+        counts as much as its blades.
+    ``moving_snr_db``
+        The same ratio for the part of the echoes that MTI keeps: each target's echo minus its
+        slow-time mean over the capture, summed over the moving targets.
+    ``sigma_v``
+        The noise standard deviation per sample directly (V).
+
+    None of them: no noise. ``/Truth`` records both resulting SNRs of every target.
     """
 
-    snr_db: Optional[float] = None
+    snr_db: Optional[float] = field(default=None, metadata=SNR_RANGE)
     sigma_v: Optional[float] = field(default=None, metadata=NON_NEGATIVE)
+    moving_snr_db: Optional[float] = field(default=None, metadata=SNR_RANGE)
 
     def __post_init__(self):
-        if self.snr_db is not None and self.sigma_v is not None:
-            raise ParameterError("give snr_db or sigma_v, not both")
+        given = [name for name in ("snr_db", "sigma_v", "moving_snr_db") if getattr(self, name) is not None]
+        if len(given) > 1:
+            if set(given) == {"snr_db", "sigma_v"}:
+                raise ParameterError("give snr_db or sigma_v, not both")
+            raise ParameterError(f"give one of snr_db, moving_snr_db, sigma_v, not {' and '.join(given)}")
 
 
 @dataclass(frozen=True)
@@ -233,7 +133,7 @@ class Scene:
     noise: Noise = Noise()
     adc: Adc = Adc()
     fidelity: Fidelity = Fidelity()
-    seed: int = 0
+    seed: int = field(default=0, metadata=NON_NEGATIVE)
     name: str = "scene"
 
 
@@ -241,15 +141,16 @@ def _targets(data, path):
     if data is None:
         return ()
     if not isinstance(data, list):
-        raise ParameterError(f"{path}: expected a list of targets, got {data!r}")
+        raise ParameterError(f"{path}: expected a list of targets, got {short_repr(data)}")
     targets = []
     for i, item in enumerate(data):
         item_path = f"{path}[{i}]"
         if not isinstance(item, dict) or "type" not in item:
             raise ParameterError(f"{item_path}.type: missing (one of {', '.join(TARGET_KINDS)})")
         kind = item["type"]
-        if kind not in TARGET_KINDS:
-            raise ParameterError(f"{item_path}.type: unknown target type {kind!r} (one of {', '.join(TARGET_KINDS)})")
+        if not isinstance(kind, str) or kind not in TARGET_KINDS:
+            raise ParameterError(f"{item_path}.type: unknown target type {short_repr(kind)} "
+                                 f"(one of {', '.join(TARGET_KINDS)})")
         targets.append(build(TARGET_KINDS[kind], {k: v for k, v in item.items() if k != "type"}, item_path))
     return tuple(targets)
 
@@ -262,7 +163,9 @@ def scene_from_mapping(data):
         raise ParameterError("radar: missing (every scene needs a radar block; see configs/radarlog.yaml)")
     rest = {k: v for k, v in data.items() if k != "targets"}
     scene = build(Scene, rest, "")
-    return dataclasses.replace(scene, targets=_targets(data.get("targets"), "targets"))
+    scene = dataclasses.replace(scene, targets=_targets(data.get("targets"), "targets"))
+    check_scene(scene)
+    return scene
 
 
 class SceneLoader(yaml.SafeLoader):
@@ -280,12 +183,28 @@ SceneLoader.add_implicit_resolver(
 def load_scene_mapping(path):
     """Read a scene YAML file into a plain mapping (a separate step so CLI overrides apply before validation)."""
     try:
-        with open(path, encoding="utf-8") as fh:
-            return yaml.load(fh, Loader=SceneLoader)
-    except yaml.YAMLError as exc:
-        raise ParameterError(f"{path}: not valid YAML ({str(exc).splitlines()[0]})") from None
+        with open(path, "rb") as fh:
+            raw = fh.read(MAX_SCENE_BYTES + 1)
     except OSError as exc:
         raise ParameterError(f"{path}: cannot read ({exc.strerror})") from None
+    if len(raw) > MAX_SCENE_BYTES:
+        raise ParameterError(f"{path}: over {MAX_SCENE_BYTES // 1_000_000} MB, too large to be a scene YAML")
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ParameterError(f"{path}: not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset {exc.start}); "
+                             "save the scene as UTF-8") from None
+    try:
+        return yaml.load(text, Loader=SceneLoader)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
+        problem = " ".join((exc.problem or exc.context or "syntax error").split())
+        raise ParameterError(f"{path}: not valid YAML{where} ({problem})") from None
+    except yaml.YAMLError as exc:
+        raise ParameterError(f"{path}: not valid YAML ({str(exc).splitlines()[0]})") from None
+    except RecursionError:
+        raise ParameterError(f"{path}: nested too deeply to be a scene (a scene needs a few levels)") from None
 
 
 def scene_to_yaml(scene_mapping):

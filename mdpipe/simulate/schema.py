@@ -26,6 +26,15 @@ POSITIVE = check(lambda v: v > 0, "> 0")
 NON_NEGATIVE = check(lambda v: v >= 0, ">= 0")
 
 
+REPR_CHARS = 60
+
+
+def short_repr(value):
+    """``repr(value)``, cut to a readable length for one-line messages."""
+    text = repr(value)
+    return text if len(text) <= REPR_CHARS else text[:REPR_CHARS - 3] + "..."
+
+
 def _join(path, key):
     return f"{path}.{key}" if path else key
 
@@ -36,11 +45,15 @@ def _fail(path, message):
 
 def _number(value, path, *, integer):
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        _fail(path, f"expected {'an integer' if integer else 'a number'}, got {value!r}")
+        _fail(path, f"expected {'an integer' if integer else 'a number'}, got {short_repr(value)}")
+    try:
+        finite = math.isfinite(value)
+    except OverflowError:  # an integer beyond float range
+        finite = False
+    if not finite:
+        _fail(path, f"expected a finite number, got {short_repr(value)}")
     if integer and value != int(value):
         _fail(path, f"expected an integer, got {value!r}")
-    if not math.isfinite(value):
-        _fail(path, f"expected a finite number, got {value!r}")
     return int(value) if integer else float(value)
 
 
@@ -51,7 +64,7 @@ def _convert(kind, value, path):
         return None if value is None else _convert(options[0], value, path)
     if kind is Vec3:
         if not isinstance(value, (list, tuple)) or len(value) != 3:
-            _fail(path, f"expected a list of 3 numbers [x, y, z], got {value!r}")
+            _fail(path, f"expected a list of 3 numbers [x, y, z], got {short_repr(value)}")
         return tuple(_number(v, f"{path}[{i}]", integer=False) for i, v in enumerate(value))
     if origin is tuple:
         item = typing.get_args(kind)[0]
@@ -61,13 +74,13 @@ def _convert(kind, value, path):
         return build(kind, value, path)
     if kind is bool:
         if not isinstance(value, bool):
-            _fail(path, f"expected true or false, got {value!r}")
+            _fail(path, f"expected true or false, got {short_repr(value)}")
         return value
     if kind in (int, float):
         return _number(value, path, integer=kind is int)
     if kind is str:
         if not isinstance(value, str):
-            _fail(path, f"expected a string, got {value!r}")
+            _fail(path, f"expected a string, got {short_repr(value)}")
         return value
     raise TypeError(f"unsupported field type {kind!r} at {path}")
 
@@ -77,11 +90,12 @@ def build(cls, data, path):
     if data is None:
         data = {}
     if not isinstance(data, dict):
-        _fail(path, f"expected a mapping of keys to values, got {data!r}")
+        _fail(path, f"expected a mapping of keys to values, got {short_repr(data)}")
     fields = {f.name: f for f in dataclasses.fields(cls) if f.init}
-    unknown = sorted(set(data) - set(fields))
+    unknown = sorted((str(key) for key in data if key not in fields))
     if unknown:
-        _fail(_join(path, unknown[0]), f"unknown key (known keys: {', '.join(fields)})")
+        key = unknown[0] if len(unknown[0]) <= REPR_CHARS else unknown[0][:REPR_CHARS - 3] + "..."
+        _fail(_join(path, key), f"unknown key (known keys: {', '.join(fields)})")
     hints = typing.get_type_hints(cls)
     values = {}
     for name, f in fields.items():
@@ -96,7 +110,7 @@ def build(cls, data, path):
             items = value if isinstance(value, tuple) else (value,)
             bad = [v for v in items if not predicate(v)]
             if bad:
-                _fail(key_path, f"must be {phrase}, got {bad[0]!r}")
+                _fail(key_path, f"must be {phrase}, got {short_repr(bad[0])}")
         values[name] = value
     try:
         return cls(**values)

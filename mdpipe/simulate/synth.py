@@ -20,8 +20,8 @@ import numpy as np
 
 from mdpipe.physics import kinematics
 from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS, beat_frequency_hz
-from mdpipe.simulate.echoes import body_track, target_echo
 from mdpipe.simulate.fidelity import choose_model
+from mdpipe.simulate.targets import module_of, realize_all, target_echo
 
 CHUNK_CHIRPS = 512
 
@@ -58,10 +58,11 @@ def lagrange_basis(nodes_s, times_s):
 
 @dataclass(frozen=True)
 class TargetPlan:
-    """A target with its chosen model, interpolation nodes (s within the ramp) and basis (K, N), and the
-    mean and smallest range of its body over the capture."""
+    """A target with its seeded draws, chosen model, interpolation nodes (s within the ramp) and basis (K, N),
+    and the mean and smallest range of its body over the capture."""
 
     target: object
+    realization: object
     model: object
     nodes_s: np.ndarray
     basis: np.ndarray
@@ -76,17 +77,18 @@ def plan_targets(scene, *, chunk_chirps=CHUNK_CHIRPS):
     tau = radar.sample_times_s
     plans = []
     t_s = np.arange(n_chirps) * radar.chirp_period_s
-    for target in scene.targets:
-        position, velocity = body_track(target, t_s)  # once per target; the model and the plan share it
+    for target, realization in zip(scene.targets, realize_all(scene)):
+        # the body track once per target; the model and the plan share it
+        position, velocity = module_of(target).body_track(target, realization, t_s)
         ranges = kinematics.range_m(position)
-        model = choose_model(target, radar=radar, position_m=position, velocity_mps=velocity,
+        model = choose_model(target, realization, radar=radar, position_m=position, velocity_mps=velocity,
                              fidelity=scene.fidelity, chunk_chirps=chunk_chirps)
         if model.nodes_per_chirp >= radar.n_samples:
             nodes, basis = tau, np.eye(radar.n_samples)
         else:
             nodes = chebyshev_nodes_s(model.nodes_per_chirp, tau[-1])
             basis = lagrange_basis(nodes, tau)
-        plans.append(TargetPlan(target, model, nodes, basis, float(ranges.mean()), float(ranges.min())))
+        plans.append(TargetPlan(target, realization, model, nodes, basis, float(ranges.mean()), float(ranges.min())))
     return plans
 
 
@@ -108,7 +110,7 @@ def if_factors(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0)
         return np.zeros((len(channels), n_chirps, 0), np.float32), np.zeros((0, radar.n_samples), np.float32)
     g_blocks, b_blocks = [], []
     for plan in plans:
-        echo = target_echo(plan.target, t_m[:, None] + plan.nodes_s, f0_hz=f0_hz)
+        echo = target_echo(plan.target, plan.realization, t_m[:, None] + plan.nodes_s, f0_hz=f0_hz)
         g = echo.signal
         if plan.model.range_migration:
             reference_m = float(echo.range_m.mean())
