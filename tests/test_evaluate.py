@@ -45,6 +45,17 @@ def test_a_confident_value_where_the_truth_is_not_estimable_is_confidently_wrong
                                status=None)["verdict"] == "missed"
 
 
+def test_body_velocity_needs_a_detectable_unaliased_body_line():
+    import dataclasses
+
+    assert scoring.body_velocity_estimable(DRONE) == (True, "")
+    # 2 m/s at X band is 131 Hz; 25 kHz is beyond +-20 kHz: the velocity is known only modulo lambda PRF / 2
+    assert scoring.body_velocity_estimable(dataclasses.replace(DRONE, body_doppler_max_hz=25000.0)) \
+        == (False, "aliased")
+    assert scoring.body_velocity_estimable(dataclasses.replace(DRONE, body_line_snr_db=10.0)) == (False, "below_noise")
+    assert scoring.body_velocity_estimable(dataclasses.replace(DRONE, has_body=False)) == (False, "no_body")
+
+
 def test_body_velocity_error_is_relative_to_at_least_1_mps():
     assert scoring.relative_error("body_velocity_mps", 0.0, 0.05) == pytest.approx(0.05)
     assert scoring.relative_error("body_velocity_mps", -4.0, -3.0) == pytest.approx(0.25)

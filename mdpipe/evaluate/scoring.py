@@ -68,6 +68,11 @@ class Physics:
     body_velocity_mps: float = float("nan")
 
     @property
+    def detectable(self):
+        """Some line of the target (moving parts or body) stands ``LINE_SNR_DB`` above the noise."""
+        return max(self.micro_line_snr_db, self.body_line_snr_db) >= LINE_SNR_DB
+
+    @property
     def rotation_rate_hz(self):
         """Mean rotor rate, the truth of ``rotation_rate_hz`` (rev/s)."""
         return float(np.mean(self.rotor_rates_hz)) if self.rotor_rates_hz else float("nan")
@@ -137,16 +142,19 @@ def wingbeat_estimable(p):
 
 
 def body_velocity_estimable(p):
-    """Body velocity (mean range rate): a body scatterer whose Doppler line is detectable.
+    """Body velocity (mean range rate): an unambiguous, detectable body Doppler line.
 
-    A body scatterer exists (a drone's or bird's body RCS > 0, or a moving point) and its line, its
-    power shared among the Doppler bins its track sweeps over the dwell, stands ``LINE_SNR_DB`` above
-    the noise.
+    All of: a body scatterer exists (a drone's or bird's body RCS > 0, or a moving point); its line,
+    its power shared among the Doppler bins its track sweeps over the dwell, stands ``LINE_SNR_DB``
+    above the noise; its Doppler stays within +-PRF/2 (beyond, the velocity is known only modulo
+    ``lambda PRF / 2``).
     """
     if not p.has_body:
         return False, "no_body"
     if p.body_line_snr_db < LINE_SNR_DB:
         return False, "below_noise"
+    if p.body_doppler_max_hz >= p.prf_hz / 2:
+        return False, "aliased"
     return True, ""
 
 
@@ -205,13 +213,14 @@ CONFIDENTLY_WRONG = ("wrong", "unwarranted")
 def score_row(p, row):
     """Score feature row ``row`` (a dict, or None when the target was not detected) against ``p``.
 
-    Returns a flat dict: ``expected_class``, ``measured_class``, ``class_ok`` and for each feature
+    Returns a flat dict: ``expected_class``, ``measured_class``, ``class_ok``, ``detectable`` and for each feature
     ``<f>_truth``, ``<f>_value``, ``<f>_status``, ``<f>_estimable``, ``<f>_why``, ``<f>_error``,
     ``<f>_verdict``.
     """
     row = row or {}
     measured = row.get("class") or "none"
-    out = {"expected_class": p.expected_class, "measured_class": measured, "class_ok": measured == p.expected_class}
+    out = {"expected_class": p.expected_class, "measured_class": measured, "class_ok": measured == p.expected_class,
+           "detectable": p.detectable}
     for feature in FEATURES:
         estimable, why = ESTIMABILITY[feature](p)
         truth = truth_value(p, feature)
@@ -223,6 +232,15 @@ def score_row(p, row):
                     f"{feature}_estimable": estimable, f"{feature}_why": why,
                     f"{feature}_error": scored["error"], f"{feature}_verdict": scored["verdict"]})
     return out
+
+
+def body_rcs_m2(target):
+    """RCS of the scatterers that move with the target's body (m^2): a drone's or bird's body and body
+    scatterers, a point's (or branch's) own RCS."""
+    if target.kind in ("multirotor", "bird"):
+        scatterers = getattr(target, "body_scatterers", None) or ()
+        return target.body_rcs_m2 + sum(s.rcs_m2 for s in scatterers)
+    return float(getattr(target, "rcs_m2", 0.0))
 
 
 def _without_body(target):
@@ -268,16 +286,15 @@ def physics_of(target, expected, *, scene, noise_sigma_v, process):
         return Physics(**base)
     noise_v2 = noise_sigma_v ** 2 if noise_sigma_v > 0 else np.finfo(float).tiny
     gain = radar.n_samples / 3.0 * radar.n_channels * n_chirps
-    total = echo_power_v2(target, f0_hz=radar.f_start_hz, dwell_s=dwell_s)
     micro = echo_power_v2(_without_body(target), f0_hz=radar.f_start_hz, dwell_s=dwell_s) \
         if kind in ("multirotor", "bird") else 0.0
+    body_rcs = body_rcs_m2(target)
+    body_power = 0.5 * body_rcs * float(np.mean(np.asarray(expected["track"]["range_m"]) ** -4.0))
     body_doppler = expected["body_doppler_hz"]
     sweep_hz = body_doppler["max"] - body_doppler["min"]
-    body_bins = max(1.0, sweep_hz * dwell_s)
-    body_power = max(total - micro, 0.0)
     base.update(body_doppler_max_hz=max(abs(body_doppler["max"]), abs(body_doppler["min"])),
-                has_body=body_power > 0, body_velocity_mps=float(expected["range_rate_mps"]["mean"]),
-                body_line_snr_db=_db(body_power / noise_v2 * gain / body_bins))
+                has_body=body_rcs > 0, body_velocity_mps=float(expected["range_rate_mps"]["mean"]),
+                body_line_snr_db=_db(body_power / noise_v2 * gain / max(1.0, sweep_hz * dwell_s)))
     if kind == "multirotor":
         rotors = target.rotors
         rates = tuple(float(r) for r in np.abs(rotors.per_rotor("rev_per_s")))

@@ -6,7 +6,7 @@ Everything here reads the scored records (one per scene x target, see :mod:`mdpi
 import numpy as np
 import pandas as pd
 
-from mdpipe.evaluate.scoring import CONFIDENTLY_WRONG, FEATURES
+from mdpipe.evaluate.scoring import CONFIDENTLY_WRONG, FEATURES, LINE_SNR_DB
 
 CLASSES = ("drone", "bird", "none")
 WORST_LISTED = 15
@@ -78,6 +78,7 @@ def report(frame, *, title, wall_s, jobs):
     subjects = frame[frame["target"] == "subject"]
     matrix = confusion(frame)
     class_right = int(frame["class_ok"].sum())
+    seen = frame[frame["detectable"].astype(bool) | (frame["expected_class"] == "none")]
     wrong = confidently_wrong(frame)
     table = feature_table(frame)
     per_scene = subjects.drop_duplicates("scene")
@@ -86,7 +87,9 @@ def report(frame, *, title, wall_s, jobs):
              f"{len(frame) - len(subjects)} extra detections; {int((subjects['error'] != '').sum())} captures failed.",
              "", "## Class (rows: expected, columns: measured; extra detections are expected none)", "",
              _markdown(matrix.reset_index().rename(columns={"expected_class": "expected"})), "",
-             f"Classes right: {class_right} / {len(frame)} ({100 * class_right / len(frame):.1f} %).", "",
+             f"Classes right: {class_right} / {len(frame)} ({100 * class_right / len(frame):.1f} %); "
+             f"{seen['class_ok'].sum()} / {len(seen)} ({100 * seen['class_ok'].mean():.1f} %) of the targets whose "
+             f"echo a measurement can see (a line >= {LINE_SNR_DB:g} dB above the noise) and of those expected none.", "",
              "## Features (coverage = confident / estimable; errors of confident values on estimable cases)", "",
              _markdown(table), "",
              f"## Confidently wrong: {len(wrong)} values "

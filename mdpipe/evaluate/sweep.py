@@ -8,7 +8,7 @@ plain scene YAML (see ``mdpipe/simulate/scene.py``) in which any value may be a 
 
 ``{uniform: [a, b]}``, ``{loguniform: [a, b]}``, ``{normal: [mean, sd]}`` or
 ``{normal: [mean, sd, low, high]}`` (clipped), ``{randint: [a, b]}`` (inclusive), ``{choice: [...]}``
-(items may be distributions), ``{per_rotor: <distribution>}`` (one draw per rotor, inside ``rotors``)
+(items may be distributions; a target key that draws null is left out), ``{per_rotor: <distribution>}`` (one draw per rotor, inside ``rotors``)
 and ``{rotor_rates: {mean_hz: ..., spread_fraction: ..., alternate_spin: true}}`` (rotor ``i`` turns at
 ``mean (1 + spread u_i)``, ``u_i`` uniform in [-1, 1], signs alternating). A key appears in a drawn
 scene only when the template names it, so a sweep that uses no new simulator key runs on any version.
@@ -26,6 +26,7 @@ from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS
 from mdpipe.simulate.scene import load_scene_mapping
 
 DISTRIBUTIONS = ("uniform", "loguniform", "normal", "randint", "choice", "per_rotor", "rotor_rates")
+SWEEP_KEYS = ("seed", "n_scenes", "max_chirps", "bands", "blocks", "families")
 FAMILY_KEYS = ("weight", "radar", "place", "noise", "clutter", "given", "target")
 RADAR_KEYS = ("band", "bandwidth_hz", "prf_hz", "dwell_s", "n_samples", "n_channels")
 PLACE_KEYS = ("range_m", "azimuth_deg", "height_m", "speed_mps", "heading_deg")
@@ -130,8 +131,18 @@ def _rotor_rates(args, rng, path, count):
     return [_clean(r) for r in rates]
 
 
+def _drop_none(value):
+    """Mappings without their null entries (a choice that drew null leaves its key out)."""
+    if isinstance(value, dict):
+        return {k: _drop_none(v) for k, v in value.items() if v is not None}
+    if isinstance(value, list):
+        return [_drop_none(v) for v in value]
+    return value
+
+
 def _draw_target(template, rng, path):
-    """The target template drawn; a multirotor's ``rotors.count`` first, for its per-rotor entries."""
+    """The target template drawn (null entries left out); a multirotor's ``rotors.count`` first, for its
+    per-rotor entries."""
     template = dict(template)
     rotors = template.pop("rotors", None)
     target = draw_value(template, rng, path)
@@ -139,12 +150,16 @@ def _draw_target(template, rng, path):
         rotors = dict(rotors)
         count = draw_value(rotors.pop("count", 1), rng, f"{path}.rotors.count")
         target["rotors"] = {"count": count, **draw_value(rotors, rng, f"{path}.rotors", count=count)}
-    return target
+    return _drop_none(target)
 
 
 def radar_block(spec, bands, rng, path, *, max_chirps):
     """Radar mapping from drawn band, bandwidth, PRF, dwell, samples per chirp and channels."""
-    values = {k: draw_value(spec.get(k), rng, f"{path}.{k}") for k in RADAR_KEYS}
+    drawn = draw_value(spec, rng, path)
+    unknown = sorted(set(drawn) - set(RADAR_KEYS))
+    if unknown:
+        raise ParameterError(f"{path}.{unknown[0]}: unknown key (known keys: {', '.join(RADAR_KEYS)})")
+    values = {k: drawn.get(k) for k in RADAR_KEYS}
     missing = [k for k in RADAR_KEYS if values[k] is None and k != "n_channels"]
     if missing:
         raise ParameterError(f"{path}.{missing[0]}: missing (a family's radar needs {', '.join(RADAR_KEYS[:-1])})")
@@ -240,6 +255,10 @@ def validate_sweep(sweep, source):
     for key in ("seed", "n_scenes", "bands", "families"):
         if key not in sweep:
             raise ParameterError(f"{source}: {key}: missing (see configs/sweeps/default.yaml)")
+    unknown = sorted(set(sweep) - set(SWEEP_KEYS))
+    if unknown:
+        raise ParameterError(f"{source}: {unknown[0]}: unknown key (known keys: {', '.join(SWEEP_KEYS)}; "
+                             "shared YAML anchors go under blocks)")
     if not isinstance(sweep["n_scenes"], int) or sweep["n_scenes"] < 1:
         raise ParameterError(f"{source}: n_scenes: must be an integer >= 1, got {sweep['n_scenes']!r}")
     if not isinstance(sweep["families"], dict) or not sweep["families"]:
