@@ -94,10 +94,12 @@ def score_scene(draw, scene, truth, rows, *, process):
     records = [{"target": "subject", "kind": physics.kind, "true_range_m": track and track["range_m"]["mean"],
                 "range_m": match and match["range_m"], "micro_line_snr_db": physics.micro_line_snr_db,
                 "body_line_snr_db": physics.body_line_snr_db, **scoring.score_row(physics, match)}]
+    ghost = scoring.Physics(kind="ghost", expected_class="none", dwell_s=base.dwell_s, prf_hz=base.prf_hz)
     for i, row in enumerate(extra):
-        ghost = scoring.Physics(kind="ghost", expected_class="none", dwell_s=base.dwell_s, prf_hz=base.prf_hz)
+        scored = scoring.score_row(ghost, row)
+        scored.update({f"{feature}_why": "no_target" for feature in scoring.FEATURES})
         records.append({"target": f"extra{i}", "kind": "ghost", "true_range_m": None, "range_m": row["range_m"],
-                        **scoring.score_row(ghost, row)})
+                        **scored})
     return records
 
 

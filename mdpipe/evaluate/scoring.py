@@ -69,7 +69,10 @@ class Physics:
 
     @property
     def detectable(self):
-        """Some line of the target (moving parts or body) stands ``LINE_SNR_DB`` above the noise."""
+        """The echo that tells the class stands ``LINE_SNR_DB`` above the noise: a drone's blade or a bird's
+        wing lines (a body line alone does not tell a drone from a bird); any line of anything else."""
+        if self.kind in CLASS_OF_KIND:
+            return self.micro_line_snr_db >= LINE_SNR_DB
         return max(self.micro_line_snr_db, self.body_line_snr_db) >= LINE_SNR_DB
 
     @property
@@ -213,14 +216,16 @@ CONFIDENTLY_WRONG = ("wrong", "unwarranted")
 def score_row(p, row):
     """Score feature row ``row`` (a dict, or None when the target was not detected) against ``p``.
 
-    Returns a flat dict: ``expected_class``, ``measured_class``, ``class_ok``, ``detectable`` and for each feature
+    Returns a flat dict: ``expected_class``, ``measured_class``, ``class_ok``, ``detectable``, the row's
+    ``n_blades``, ``n_blades_source`` and ``notes`` (prefixed ``row_``) and for each feature
     ``<f>_truth``, ``<f>_value``, ``<f>_status``, ``<f>_estimable``, ``<f>_why``, ``<f>_error``,
     ``<f>_verdict``.
     """
     row = row or {}
     measured = row.get("class") or "none"
     out = {"expected_class": p.expected_class, "measured_class": measured, "class_ok": measured == p.expected_class,
-           "detectable": p.detectable}
+           "detectable": p.detectable, "row_n_blades": row.get("n_blades"),
+           "row_n_blades_source": row.get("n_blades_source"), "row_notes": row.get("notes")}
     for feature in FEATURES:
         estimable, why = ESTIMABILITY[feature](p)
         truth = truth_value(p, feature)
@@ -239,7 +244,7 @@ def body_rcs_m2(target):
     scatterers, a point's (or branch's) own RCS."""
     if target.kind in ("multirotor", "bird"):
         scatterers = getattr(target, "body_scatterers", None) or ()
-        return target.body_rcs_m2 + sum(s.rcs_m2 for s in scatterers)
+        return target.body_rcs_m2 + sum(_item(s, "rcs_m2") for s in scatterers)
     return float(getattr(target, "rcs_m2", 0.0))
 
 
@@ -312,10 +317,15 @@ def physics_of(target, expected, *, scene, noise_sigma_v, process):
         spread_hz = 4.0 * wing_speed_max_mps(target) / wavelength_m
         lines = line_count(spread_hz + sweep_hz, target.wingbeat_hz, prf_hz=prf_hz)
         flap_glide = getattr(target, "flap_glide", None)
-        flap_run_s = dwell_s if flap_glide is None else min(dwell_s, flap_glide.flap_s)
+        flap_run_s = dwell_s if flap_glide is None else min(dwell_s, _item(flap_glide, "flap_s"))
         return Physics(**base, micro_line_snr_db=_db(micro / noise_v2 * gain / lines),
                        wingbeat_hz=target.wingbeat_hz, flap_run_s=flap_run_s)
     return Physics(**base)
+
+
+def _item(value, name):
+    """Entry ``name`` of a nested scene block, whether a dataclass or a mapping."""
+    return value[name] if isinstance(value, dict) else getattr(value, name)
 
 
 def _db(ratio):

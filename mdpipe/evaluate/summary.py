@@ -89,7 +89,8 @@ def report(frame, *, title, wall_s, jobs):
              _markdown(matrix.reset_index().rename(columns={"expected_class": "expected"})), "",
              f"Classes right: {class_right} / {len(frame)} ({100 * class_right / len(frame):.1f} %); "
              f"{seen['class_ok'].sum()} / {len(seen)} ({100 * seen['class_ok'].mean():.1f} %) of the targets whose "
-             f"echo a measurement can see (a line >= {LINE_SNR_DB:g} dB above the noise) and of those expected none.", "",
+             f"class-telling echo a measurement can see (blade or wing lines >= {LINE_SNR_DB:g} dB above the noise) "
+             "and of those expected none.", "",
              "## Features (coverage = confident / estimable; errors of confident values on estimable cases)", "",
              _markdown(table), "",
              f"## Confidently wrong: {len(wrong)} values "
