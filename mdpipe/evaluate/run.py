@@ -75,8 +75,7 @@ def score_scene(draw, scene, truth, rows, *, process):
     ``truth`` is what :func:`mdpipe.simulate.run.simulate_to_file` returns (the ``/Truth`` expected
     features with its ``simulation`` block).
     """
-    expected, sigma_v = truth, truth["simulation"]["noise_sigma_v"]
-    radar = expected["radar"]
+    radar = truth["radar"]
     base = scoring.Physics(kind="none", expected_class="none", dwell_s=radar["duration_s"],
                            prf_hz=1.0 / scene.radar.chirp_period_s)
     subject = next((i for i, t in enumerate(scene.targets) if t.kind != "static"), None)
@@ -84,9 +83,9 @@ def score_scene(draw, scene, truth, rows, *, process):
         detected = [r for r in rows if r.get("range_m") is not None]
         physics, match, extra, track = base, (detected[0] if detected else None), detected[1:], None
     else:
-        track = expected["targets"][subject]
-        physics = scoring.physics_of(scene.targets[subject], track, scene=scene, noise_sigma_v=sigma_v,
-                                     process=process)
+        track = truth["targets"][subject]
+        physics = scoring.physics_of(scene.targets[subject], track, scene=scene,
+                                     noise_sigma_v=truth["simulation"]["noise_sigma_v"], process=process)
         match, extra = scoring.match_rows(rows, range_min_m=track["range_m"]["min"],
                                           range_max_m=track["range_m"]["max"],
                                           range_mean_m=track["range_m"]["mean"],
