@@ -10,7 +10,7 @@ from click.testing import CliRunner
 from conftest import XBAND, scene_mapping, simulate, slow_time
 from mdpipe.cli import main
 from mdpipe.errors import ParameterError
-from mdpipe.evaluate import scoring, summary, sweep
+from mdpipe.evaluate import run, scoring, summary, sweep
 from mdpipe.evaluate.compat import to_current_schema
 from mdpipe.simulate.scene import scene_from_mapping
 
@@ -148,6 +148,18 @@ def test_sweep_draws_are_seeded_per_scene_and_valid():
             assert np.all(np.sign(rates) == [1, -1, 1, -1]) and np.ptp(np.abs(rates)) == 0
 
 
+def test_default_sweep_is_large_varied_and_runs_under_compat():
+    draws = sweep.draw_scenes(sweep.load_sweep(SWEEPS / "default.yaml"))
+    assert len(draws) >= 200 and {d.band for d in draws} == {"X", "K", "W77", "W94"}
+    kinds = [d.scene["targets"][0]["type"] if d.scene["targets"] and d.family != "clutter_only" else "clutter"
+             for d in draws]
+    assert {"multirotor", "bird", "point", "branch", "clutter"} == set(kinds)
+    assert max(d.scene["radar"]["n_chirps"] for d in draws) <= 40000
+    given = [d.process["n_blades"] is not None for d in draws if d.scene["targets"][0].get("type") == "multirotor"]
+    assert 0.3 < np.mean(given) < 0.7  # N given to about half of the drones
+    run.prepare(draws, compat=True)  # every scene accepted by the installed simulator
+
+
 def test_distributions():
     rng = np.random.default_rng(1)
     values = [sweep.draw_value({"loguniform": [1.0, 100.0]}, rng, "x") for _ in range(2000)]
@@ -195,3 +207,7 @@ def test_evaluate_rejects_a_bad_sweep(tmp_path):
     assert result.exit_code == 2
     assert "families: missing (see configs/sweeps/default.yaml)" in result.output
     assert "Traceback" not in result.output
+    bad.write_text((SWEEPS / "smoke.yaml").read_text().replace("type: point,", "type: point, wobble_hz: 3,"))
+    result = CliRunner().invoke(main, ["evaluate", str(bad), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2 and "Traceback" not in result.output
+    assert "targets[0].wobble_hz: unknown key" in result.output and "run with --compat" in result.output
