@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mdpipe.errors import ParameterError
-from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS
+from mdpipe.params import RadarParams
 from mdpipe.simulate.scene import load_scene_mapping
 
 DISTRIBUTIONS = ("uniform", "loguniform", "normal", "randint", "choice", "per_rotor", "rotor_rates")
@@ -177,7 +177,8 @@ def radar_block(spec, bands, rng, path, *, max_chirps):
 
 
 def _max_range_m(radar):
-    return SPEED_OF_LIGHT_MPS / (2.0 * (radar["f_stop_hz"] - radar["f_start_hz"])) * (radar["n_samples"] // 2)
+    keys = ("f_start_hz", "f_stop_hz", "ramp_up_s", "chirp_period_s", "sample_rate_hz", "n_samples")
+    return RadarParams(**{k: radar[k] for k in keys}).max_range_m
 
 
 def place(spec, rng, path, *, radar):
