@@ -200,6 +200,24 @@ def test_evaluate_command_writes_its_files(tmp_path):
     assert "## Class" in text and "## Confidently wrong" in text and text.strip() in result.output
 
 
+def test_a_capture_the_processing_fails_on_is_recorded_as_a_wrong_class(tmp_path, monkeypatch):
+    import mdpipe.process.pipeline
+
+    def fail(*_args, **_kwargs):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(mdpipe.process.pipeline, "process_capture", fail)
+    draw = sweep.draw_scene(sweep.load_sweep(SWEEPS / "smoke.yaml"), 5)
+    [(draw, mapping, changes)] = run.prepare([draw], compat=False)
+    (tmp_path / "scenes").mkdir()
+    (tmp_path / "captures").mkdir()
+    [record] = run.run_scene(draw, mapping, changes, tmp_path)
+    assert record["measured_class"] == "error" and not record["class_ok"]
+    assert record["error"] == "RuntimeError: boom" and not list((tmp_path / "captures").iterdir())
+    text = summary.report(summary.records_frame([record]), title="t", wall_s=1.0, jobs=1)
+    assert "1 captures failed" in text and "| 0005_moving_point | moving_point | RuntimeError: boom |" in text
+
+
 def test_evaluate_rejects_a_bad_sweep(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text("seed: 1\nn_scenes: 3\nbands: {X: 9.8e9}\n")

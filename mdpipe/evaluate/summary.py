@@ -82,9 +82,10 @@ def report(frame, *, title, wall_s, jobs):
     wrong = confidently_wrong(frame)
     table = feature_table(frame)
     per_scene = subjects.drop_duplicates("scene")
+    failed = subjects[subjects["error"].fillna("") != ""]
     lines = [f"# {title}", "",
              f"{len(per_scene)} scenes ({', '.join(f'{k} {v}' for k, v in per_scene['family'].value_counts().items())}), "
-             f"{len(frame) - len(subjects)} extra detections; {int((subjects['error'] != '').sum())} captures failed.",
+             f"{len(frame) - len(subjects)} extra detections; {len(failed)} captures failed.",
              "", "## Class (rows: expected, columns: measured; extra detections are expected none)", "",
              _markdown(matrix.reset_index().rename(columns={"expected_class": "expected"})), "",
              f"Classes right: {class_right} / {len(frame)} ({100 * class_right / len(frame):.1f} %); "
@@ -100,6 +101,8 @@ def report(frame, *, title, wall_s, jobs):
     if len(wrong):
         lines += ["By cause:", "", _markdown(causes(wrong)), "", f"Worst {min(WORST_LISTED, len(wrong))}:", "",
                   _markdown(wrong.head(WORST_LISTED)), ""]
+    if len(failed):
+        lines += [f"## Failed captures: {len(failed)}", "", _markdown(failed[["scene", "family", "error"]]), ""]
     lines += ["## Timings", "",
               f"wall {wall_s:.1f} s with -j {jobs}; per scene simulate median {subjects['simulate_s'].median():.2f} s "
               f"(total {subjects['simulate_s'].sum():.1f} s), process median {subjects['process_s'].median():.2f} s "
