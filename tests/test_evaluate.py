@@ -188,6 +188,8 @@ def test_compat_reduces_new_keys_to_the_installed_schema():
 
 
 def test_evaluate_command_writes_its_files(tmp_path):
+    (tmp_path / "scenes").mkdir()
+    (tmp_path / "scenes" / "0099_old_run.yaml").write_text("name: old\n")
     result = CliRunner().invoke(main, ["evaluate", str(SWEEPS / "smoke.yaml"), "--out", str(tmp_path), "-j", "1"])
     assert result.exit_code == 0, result.output
     table = pd.read_csv(tmp_path / "scenes.csv")

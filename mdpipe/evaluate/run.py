@@ -141,10 +141,15 @@ def run_scene(draw, mapping, changes, out_dir, keep_captures=False):
 
 
 def run_all(prepared, out_dir, *, jobs=1, keep_captures=False):
-    """Records of every prepared scene, in scene order; ``jobs`` worker processes."""
+    """Records of every prepared scene, in scene order; ``jobs`` worker processes.
+
+    ``out_dir/scenes/`` is emptied of scene files first, so that it holds exactly this run's scenes.
+    """
     out_dir = Path(out_dir)
     for sub in (SCENES_DIR, CAPTURES_DIR):
         (out_dir / sub).mkdir(parents=True, exist_ok=True)
+    for stale in (out_dir / SCENES_DIR).glob("*.yaml"):  # scenes.csv will describe this run's scenes only
+        stale.unlink()
     args = [(draw, mapping, changes, out_dir, keep_captures) for draw, mapping, changes in prepared]
     if jobs == 1:
         results = [run_scene(*a) for a in args]
