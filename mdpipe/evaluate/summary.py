@@ -19,7 +19,7 @@ def records_frame(records):
 
 def confusion(frame):
     """Counts of expected class (rows) x measured class (columns)."""
-    measured = [c for c in CLASSES] + sorted(set(frame["measured_class"]) - set(CLASSES))
+    measured = list(CLASSES) + sorted(set(frame["measured_class"]) - set(CLASSES))
     table = pd.crosstab(frame["expected_class"], frame["measured_class"])
     return table.reindex(index=list(CLASSES), columns=measured, fill_value=0)
 
@@ -45,7 +45,7 @@ def feature_table(frame):
 
 def confidently_wrong(frame):
     """Every confidently wrong value: scene, family, feature, truth, value, verdict, why (the truth's reason
-    when not estimable), error; the largest errors first, then the unwarranted ones."""
+    when not estimable), relative error in %; the largest error first, values without a truth last."""
     parts = []
     for feature in FEATURES:
         bad = frame[frame[f"{feature}_verdict"].isin(CONFIDENTLY_WRONG)]
