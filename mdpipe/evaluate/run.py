@@ -1,0 +1,164 @@
+"""Simulate, process and score every drawn scene, on ``jobs`` processes."""
+
+import os
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+import yaml
+from threadpoolctl import threadpool_limits
+
+from mdpipe.errors import ParameterError
+from mdpipe.evaluate import scoring
+from mdpipe.evaluate.compat import to_current_schema
+from mdpipe.params import ProcessParams
+
+SCENES_DIR = "scenes"
+CAPTURES_DIR = "captures"
+
+
+def process_params(process):
+    """:class:`ProcessParams` for a scene's ``process`` keywords, and the blade count used.
+
+    ``n_blades=None`` means *not given*: automatic where ProcessParams accepts None, else its default
+    (the guess a user who does not know N gets today); the second value says which (``given``,
+    ``auto`` or ``default``).
+    """
+    kwargs = dict(process)
+    if kwargs.get("n_blades") is not None:
+        return ProcessParams(**kwargs), "given"
+    try:
+        return ProcessParams(**kwargs), "auto"
+    except (ParameterError, TypeError):
+        kwargs.pop("n_blades")
+        return ProcessParams(**kwargs), "default"
+
+
+def prepare(draws, *, compat):
+    """Each draw's scene mapping as the simulator will get it, validated, with the changes ``--compat`` made.
+
+    Raises :class:`ParameterError` naming the first scene the installed simulator rejects.
+    """
+    from mdpipe.simulate.scene import scene_from_mapping
+
+    prepared = []
+    for draw in draws:
+        mapping, changes = to_current_schema(draw.scene) if compat else (draw.scene, [])
+        try:
+            scene_from_mapping(mapping)
+        except ParameterError as exc:
+            hint = "" if compat else "; if the simulator does not know this key yet, run with --compat"
+            raise ParameterError(f"scene {draw.name}: {exc}{hint}") from None
+        prepared.append((draw, mapping, changes))
+    return prepared
+
+
+def write_scene_yaml(path, draw, mapping, changes):
+    """The drawn scene as a scene YAML with the command lines that rerun it."""
+    options = ""
+    if draw.process.get("n_blades") is not None:
+        options += f" --blades {draw.process['n_blades']}"
+    if "elevation_deg" in draw.process:
+        options += f" --elevation-deg {draw.process['elevation_deg']:g}"
+    header = [f"# family {draw.family}, band {draw.band}. Rerun:",
+              f"#   mdpipe simulate --config {path.name} -o {draw.name}.h5",
+              f"#   mdpipe process {draw.name}.h5{options}"]
+    if changes:
+        header.append(f"# --compat changed: {', '.join(changes)}")
+    path.write_text("\n".join(header) + "\n" + yaml.safe_dump(mapping, sort_keys=False), encoding="utf-8")
+
+
+def score_scene(draw, scene, truth, rows, *, process):
+    """Scored records of one scene: its subject target (or, without one, the capture's first row) and
+    every other detection, which should not exist (expected class none, nothing estimable).
+
+    ``truth`` is what :func:`mdpipe.simulate.run.simulate_to_file` returns (the ``/Truth`` expected
+    features with its ``simulation`` block).
+    """
+    radar = truth["radar"]
+    base = scoring.Physics(kind="none", expected_class="none", dwell_s=radar["duration_s"],
+                           prf_hz=1.0 / scene.radar.chirp_period_s)
+    subject = next((i for i, t in enumerate(scene.targets) if t.kind != "static"), None)
+    if subject is None:
+        detected = [r for r in rows if r.get("range_m") is not None]
+        physics, match, extra, track = base, (detected[0] if detected else None), detected[1:], None
+    else:
+        track = truth["targets"][subject]
+        physics = scoring.physics_of(scene.targets[subject], track, scene=scene,
+                                     noise_sigma_v=truth["simulation"]["noise_sigma_v"], process=process)
+        match, extra = scoring.match_rows(rows, range_min_m=track["range_m"]["min"],
+                                          range_max_m=track["range_m"]["max"],
+                                          range_mean_m=track["range_m"]["mean"],
+                                          tolerance_m=max(3 * radar["range_bin_m"], 1.0))
+    records = [{"target": "subject", "kind": physics.kind, "true_range_m": track and track["range_m"]["mean"],
+                "range_m": match and match["range_m"], "micro_line_snr_db": physics.micro_line_snr_db,
+                "body_line_snr_db": physics.body_line_snr_db, **scoring.score_row(physics, match)}]
+    ghost = scoring.Physics(kind="ghost", expected_class="none", dwell_s=base.dwell_s, prf_hz=base.prf_hz)
+    for i, row in enumerate(extra):
+        scored = scoring.score_row(ghost, row)
+        scored.update({f"{feature}_why": "no_target" for feature in scoring.FEATURES})
+        records.append({"target": f"extra{i}", "kind": "ghost", "true_range_m": None, "range_m": row["range_m"],
+                        **scored})
+    return records
+
+
+def run_scene(draw, mapping, changes, out_dir, keep_captures=False):
+    """Simulate, process and score one prepared scene; a list of record dicts (see :func:`score_scene`).
+
+    A capture the processing fails on (any exception: the benchmark measures the processing, it does
+    not stop at its first failure) is recorded with the error and counts as a wrong class.
+    """
+    from mdpipe.process.pipeline import process_capture
+    from mdpipe.simulate.run import simulate_to_file
+    from mdpipe.simulate.scene import scene_from_mapping, scene_to_yaml
+
+    out_dir = Path(out_dir)
+    write_scene_yaml(out_dir / SCENES_DIR / f"{draw.name}.yaml", draw, mapping, changes)
+    capture = out_dir / CAPTURES_DIR / f"{draw.name}.h5"
+    scene = scene_from_mapping(mapping)
+    params, blades_source = process_params(draw.process)
+    common = {"scene": draw.name, "family": draw.family, "band": draw.band,
+              "wavelength_m": scene.radar.params.wavelength_m, "prf_hz": scene.radar.params.prf_hz,
+              "n_chirps": scene.radar.n_chirps, "dwell_s": scene.radar.params.duration_s(scene.radar.n_chirps),
+              "n_blades_given": draw.process.get("n_blades"), "n_blades_source": blades_source,
+              "elevation_given": "elevation_deg" in draw.process, "compat_changes": ";".join(changes)}
+    with threadpool_limits(limits=1):
+        start = time.perf_counter()
+        truth = simulate_to_file(scene, capture, scene_yaml=scene_to_yaml(mapping))
+        simulated = time.perf_counter()
+        try:
+            rows, error = process_capture(capture, params).rows, ""
+        except Exception as exc:  # noqa: BLE001 - the benchmark records a failing capture and goes on
+            rows, error = [], f"{type(exc).__name__}: {exc}"
+        processed = time.perf_counter()
+    if not keep_captures:
+        os.remove(capture)
+    timing = {"simulate_s": simulated - start, "process_s": processed - simulated, "error": error}
+    records = [{**common, **record, **timing} for record in score_scene(draw, scene, truth, rows, process=draw.process)]
+    if error:  # a capture that could not be processed counts as a wrong class
+        records[0].update(measured_class="error", class_ok=False)
+    return records
+
+
+def run_all(prepared, out_dir, *, jobs=1, keep_captures=False):
+    """Records of every prepared scene, in scene order; ``jobs`` worker processes.
+
+    ``out_dir/scenes/`` is emptied of scene files first, so that it holds exactly this run's scenes.
+    """
+    out_dir = Path(out_dir)
+    for sub in (SCENES_DIR, CAPTURES_DIR):
+        (out_dir / sub).mkdir(parents=True, exist_ok=True)
+    for stale in (out_dir / SCENES_DIR).glob("*.yaml"):  # scenes.csv will describe this run's scenes only
+        stale.unlink()
+    args = [(draw, mapping, changes, out_dir, keep_captures) for draw, mapping, changes in prepared]
+    if jobs == 1:
+        results = [run_scene(*a) for a in args]
+    else:
+        with ProcessPoolExecutor(max_workers=jobs) as pool:
+            results = list(pool.map(run_scene, *zip(*args)))
+    if not keep_captures:
+        try:
+            (out_dir / CAPTURES_DIR).rmdir()
+        except OSError:
+            pass
+    return [record for records in results for record in records]

@@ -1,0 +1,344 @@
+"""What each drawn target lets a measurement know, and how a feature row measured it.
+
+Estimability is decided from the physics of the scene (one function per feature, each rule in its
+docstring), never from what the pipeline did. A row's value is
+
+* REPORTED when it is not null;
+* CONFIDENT when reported and its ``<feature>_status`` is ``ok`` (a row without a status column
+  states no caveat, so every reported value is confident);
+* CONFIDENTLY WRONG when confident and more than ``TOLERANCE`` off the truth (verdict ``wrong``), or
+  confident where the truth says not estimable (verdict ``unwarranted``).
+
+Verdicts: ``right`` and ``wrong`` (confident, estimable), ``unwarranted`` (confident, not estimable),
+``withheld`` (reported with a caveat), ``missed`` (estimable, not reported), ``n/a`` (not estimable,
+not claimed). Coverage = confident values / estimable cases.
+"""
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from mdpipe.physics import rotor
+from mdpipe.simulate.echoes import target_echo, wing_speed_max_mps
+
+FEATURES = ("rotation_rate_hz", "blade_length_m", "wingbeat_freq_hz", "body_velocity_mps")
+CLASS_OF_KIND = {"multirotor": "drone", "bird": "bird"}
+TOLERANCE = 0.10             # a confident value more than 10 % off is wrong
+VELOCITY_FLOOR_MPS = 1.0     # body velocity error is relative to max(|v|, 1 m/s): 0.1 m/s near hover
+LINE_SNR_DB = 13.0           # a spectral line is detectable: Pfa 1e-5 per bin needs 10.6 dB, + ~2.5 dB for Pd 0.9
+MIN_ROTATIONS = 3            # rotation: the dwell holds 3 turns of the slowest rotor
+MIN_COS_ROTATION = 0.1       # rotation: |beta| <= 84 deg (at 90 deg the blades move across the line of sight)
+MAX_BLADE_ELEVATION_DEG = 80.0
+MIN_TIP_HARMONICS = 24       # blade length: the band +-f_tip spans 24 rotation harmonics
+UNKNOWN_ELEVATION_COS = 0.98  # blade length without a given beta: cos(beta) >= 0.98 (|beta| <= 11.5 deg)
+MIN_WINGBEATS = 2            # wingbeat: two beats in a row while flapping
+POWER_SAMPLES = 4096
+
+
+@dataclass(frozen=True)
+class Physics:
+    """What the physics of one drawn target says, in the units its names carry.
+
+    ``micro_line_snr_db`` is the SNR of one spectral line of the moving parts (blades, wings) after the
+    range FFT (gain ``n_samples / 3``: a real IF's positive bin through a Hann window), coherent RX
+    combining (``n_channels``) and the dwell (``n_chirps``), the moving parts' power shared among the
+    lines that fill their Doppler extent (see :func:`line_count`). ``body_line_snr_db`` likewise
+    for the body, its power shared among the Doppler bins its track sweeps.
+    """
+
+    kind: str
+    expected_class: str
+    dwell_s: float
+    prf_hz: float
+    micro_line_snr_db: float = float("-inf")
+    body_line_snr_db: float = float("-inf")
+    rotor_rates_hz: tuple = ()
+    n_blades: int = 0
+    blade_length_m: float = float("nan")
+    elevation_deg: float = 0.0
+    blades_given: bool = False
+    elevation_given: bool = False
+    imbalanced: bool = False
+    tip_doppler_hz: float = 0.0
+    body_doppler_max_hz: float = 0.0
+    wingbeat_hz: float = float("nan")
+    flap_run_s: float = 0.0
+    has_body: bool = False
+    body_velocity_mps: float = float("nan")
+
+    @property
+    def detectable(self):
+        """The echo that tells the class stands ``LINE_SNR_DB`` above the noise: a drone's blade or a bird's
+        wing lines (a body line alone does not tell a drone from a bird); any line of anything else."""
+        if self.kind in CLASS_OF_KIND:
+            return self.micro_line_snr_db >= LINE_SNR_DB
+        return max(self.micro_line_snr_db, self.body_line_snr_db) >= LINE_SNR_DB
+
+    @property
+    def rotation_rate_hz(self):
+        """Mean rotor rate, the truth of ``rotation_rate_hz`` (rev/s)."""
+        return float(np.mean(self.rotor_rates_hz)) if self.rotor_rates_hz else float("nan")
+
+
+def rotation_estimable(p):
+    """Rotation rate: a drone whose blade flashes carry the rate unambiguously.
+
+    All of: the blades' spectral lines stand ``LINE_SNR_DB`` above the noise (``micro_line_snr_db``);
+    the dwell holds ``MIN_ROTATIONS`` turns of the slowest rotor; ``|cos beta| >= MIN_COS_ROTATION``;
+    the chopping frequency ``N f_rot`` of the fastest rotor is below PRF / 2 (else the line that
+    gives the rate aliases); and the blade count is knowable: given to the processing, or told by the
+    echo (odd N flashes twice per blade per turn; unequal blades add lines at ``f_rot``).
+    Returns ``(estimable, reason)``, reason ``""`` when estimable.
+    """
+    if p.kind != "multirotor":
+        return False, "not_a_drone"
+    if p.micro_line_snr_db < LINE_SNR_DB:
+        return False, "below_noise"
+    if p.dwell_s * min(p.rotor_rates_hz) < MIN_ROTATIONS:
+        return False, "dwell_short"
+    if abs(np.cos(np.deg2rad(p.elevation_deg))) < MIN_COS_ROTATION:
+        return False, "elevation"
+    if rotor.chopping_frequency_hz(max(p.rotor_rates_hz), n_blades=p.n_blades) >= p.prf_hz / 2:
+        return False, "chopping_aliased"
+    if not (p.blades_given or p.n_blades % 2 == 1 or p.imbalanced):
+        return False, "blades_unknown"
+    return True, ""
+
+
+def blade_length_estimable(p):
+    """Blade length (Eq. 6 inverted): the tip Doppler is seen, resolved and its projection known.
+
+    All of: rotation estimable; the tips' band (body Doppler plus ``f_tip``) inside +-PRF/2 (not
+    aliased); ``|beta| <= MAX_BLADE_ELEVATION_DEG``; the band ``2 f_tip`` spans ``MIN_TIP_HARMONICS``
+    rotation harmonics (else its edge is a handful of lines); beta given to the processing, or so
+    small that ``cos beta >= UNKNOWN_ELEVATION_COS`` (Eq. 6 gives ``r cos beta``, not r).
+    """
+    ok, reason = rotation_estimable(p)
+    if not ok:
+        return False, reason
+    if p.body_doppler_max_hz + p.tip_doppler_hz >= p.prf_hz / 2:
+        return False, "aliased"
+    if abs(p.elevation_deg) > MAX_BLADE_ELEVATION_DEG:
+        return False, "elevation"
+    if 2 * p.tip_doppler_hz / max(p.rotor_rates_hz) < MIN_TIP_HARMONICS:
+        return False, "few_harmonics"
+    if not p.elevation_given and np.cos(np.deg2rad(p.elevation_deg)) < UNKNOWN_ELEVATION_COS:
+        return False, "elevation_unknown"
+    return True, ""
+
+
+def wingbeat_estimable(p):
+    """Wingbeat: a bird whose wing lines are detectable and that beats ``MIN_WINGBEATS`` times in a row.
+
+    All of: the wings' lines (spaced by the wingbeat) stand ``LINE_SNR_DB`` above the noise; the
+    longest stretch of flapping inside the dwell (``flap_run_s``: the whole dwell, or one flap burst
+    of a flap-glide bird) holds ``MIN_WINGBEATS`` beats.
+    """
+    if p.kind != "bird":
+        return False, "not_a_bird"
+    if p.micro_line_snr_db < LINE_SNR_DB:
+        return False, "below_noise"
+    if p.flap_run_s * p.wingbeat_hz < MIN_WINGBEATS:
+        return False, "dwell_short"
+    return True, ""
+
+
+def body_velocity_estimable(p):
+    """Body velocity (mean range rate): an unambiguous, detectable body Doppler line.
+
+    All of: a body scatterer exists (a drone's or bird's body RCS > 0, or a moving point); its line,
+    its power shared among the Doppler bins its track sweeps over the dwell, stands ``LINE_SNR_DB``
+    above the noise; its Doppler stays within +-PRF/2 (beyond, the velocity is known only modulo
+    ``lambda PRF / 2``).
+    """
+    if not p.has_body:
+        return False, "no_body"
+    if p.body_line_snr_db < LINE_SNR_DB:
+        return False, "below_noise"
+    if p.body_doppler_max_hz >= p.prf_hz / 2:
+        return False, "aliased"
+    return True, ""
+
+
+ESTIMABILITY = {"rotation_rate_hz": rotation_estimable, "blade_length_m": blade_length_estimable,
+                "wingbeat_freq_hz": wingbeat_estimable, "body_velocity_mps": body_velocity_estimable}
+
+
+def truth_value(p, feature):
+    """The true value of ``feature`` for target ``p`` (NaN where it has none)."""
+    return {"rotation_rate_hz": p.rotation_rate_hz, "blade_length_m": p.blade_length_m,
+            "wingbeat_freq_hz": p.wingbeat_hz, "body_velocity_mps": p.body_velocity_mps}[feature]
+
+
+def relative_error(feature, truth, value):
+    """``|value - truth| / |truth|``; for body velocity relative to ``max(|truth|, VELOCITY_FLOOR_MPS)``."""
+    scale = max(abs(truth), VELOCITY_FLOOR_MPS) if feature == "body_velocity_mps" else abs(truth)
+    return abs(value - truth) / scale
+
+
+def score_value(feature, *, truth, estimable, value, status):
+    """Verdict of one feature value.
+
+    Parameters
+    ----------
+    feature : str
+    truth : float
+        NaN when the target has no such quantity.
+    estimable : bool
+    value : float or None
+        The row's value; None (or NaN) when not reported.
+    status : str or None
+        The row's ``<feature>_status``; None when the row has no status column.
+
+    Returns
+    -------
+    dict with ``confident`` (bool), ``error`` (relative, NaN unless both truth and a confident value
+    exist) and ``verdict``.
+    """
+    reported = value is not None and np.isfinite(value)
+    confident = bool(reported and (status is None or status == "ok"))
+    error = relative_error(feature, truth, value) if confident and np.isfinite(truth) else float("nan")
+    if confident and not estimable:
+        verdict = "unwarranted"
+    elif confident:
+        verdict = "wrong" if error > TOLERANCE else "right"
+    elif reported:
+        verdict = "withheld"
+    else:
+        verdict = "missed" if estimable else "n/a"
+    return {"confident": confident, "error": error, "verdict": verdict}
+
+
+CONFIDENTLY_WRONG = ("wrong", "unwarranted")
+
+
+def score_row(p, row):
+    """Score feature row ``row`` (a dict, or None when the target was not detected) against ``p``.
+
+    Returns a flat dict: ``expected_class``, ``measured_class``, ``class_ok``, ``detectable``, the row's
+    ``n_blades``, ``n_blades_source`` and ``notes`` (prefixed ``row_``) and for each feature
+    ``<f>_truth``, ``<f>_value``, ``<f>_status``, ``<f>_estimable``, ``<f>_why``, ``<f>_error``,
+    ``<f>_verdict``.
+    """
+    row = row or {}
+    measured = row.get("class") or "none"
+    out = {"expected_class": p.expected_class, "measured_class": measured, "class_ok": measured == p.expected_class,
+           "detectable": p.detectable, "row_n_blades": row.get("n_blades"),
+           "row_n_blades_source": row.get("n_blades_source"), "row_notes": row.get("notes")}
+    for feature in FEATURES:
+        estimable, why = ESTIMABILITY[feature](p)
+        truth = truth_value(p, feature)
+        value = row.get(feature)
+        value = None if value is None else float(value)
+        status = row.get(f"{feature}_status")
+        scored = score_value(feature, truth=truth, estimable=estimable, value=value, status=status)
+        out.update({f"{feature}_truth": truth, f"{feature}_value": value, f"{feature}_status": status,
+                    f"{feature}_estimable": estimable, f"{feature}_why": why,
+                    f"{feature}_error": scored["error"], f"{feature}_verdict": scored["verdict"]})
+    return out
+
+
+def body_rcs_m2(target):
+    """RCS of the scatterers that move with the target's body (m^2): a drone's or bird's body and body
+    scatterers, a point's (or branch's) own RCS."""
+    if target.kind in ("multirotor", "bird"):
+        scatterers = getattr(target, "body_scatterers", None) or ()
+        return target.body_rcs_m2 + sum(_item(s, "rcs_m2") for s in scatterers)
+    return float(getattr(target, "rcs_m2", 0.0))
+
+
+def _without_body(target):
+    fields = {f.name for f in dataclasses.fields(target)}
+    changes = {k: v for k, v in (("body_rcs_m2", 0.0), ("body_scatterers", ())) if k in fields}
+    return dataclasses.replace(target, **changes)
+
+
+def echo_power_v2(target, *, f0_hz, dwell_s):
+    """Mean IF power of ``target`` over the dwell (V^2 per real sample, ``|s|^2 / 2``), at random instants
+    (a fixed seed; regular instants could strobe with the blade flashes)."""
+    t_s = np.sort(np.random.default_rng(0).uniform(0.0, dwell_s, POWER_SAMPLES))
+    return 0.5 * float(np.mean(np.abs(target_echo(target, t_s, f0_hz=f0_hz).signal) ** 2))
+
+
+def line_count(extent_hz, spacing_hz, *, prf_hz):
+    """Lines of spacing ``spacing_hz`` in a Doppler extent (folded into the PRF when wider), at least 1."""
+    return max(1.0, min(extent_hz, prf_hz) / spacing_hz)
+
+
+def physics_of(target, expected, *, scene, noise_sigma_v, process):
+    """:class:`Physics` of one scene target.
+
+    Parameters
+    ----------
+    target : a target of :class:`mdpipe.simulate.scene.Scene`
+    expected : dict
+        Its entry of the capture's ``/Truth`` ``expected.targets`` (body track, ``expected_class``).
+    scene : Scene
+    noise_sigma_v : float
+        Noise standard deviation per IF sample (V), from ``/Truth`` ``simulation``.
+    process : dict
+        The :class:`mdpipe.params.ProcessParams` keywords given (``n_blades``, ``elevation_deg``).
+    """
+    radar = scene.radar.params
+    n_chirps = scene.radar.n_chirps
+    dwell_s = radar.duration_s(n_chirps)
+    wavelength_m, prf_hz = radar.wavelength_m, radar.prf_hz
+    kind = target.kind
+    base = dict(kind=kind, expected_class=expected.get("expected_class", CLASS_OF_KIND.get(kind, "none")),
+                dwell_s=dwell_s, prf_hz=prf_hz)
+    if kind == "static":
+        return Physics(**base)
+    noise_v2 = noise_sigma_v ** 2 if noise_sigma_v > 0 else np.finfo(float).tiny
+    gain = radar.n_samples / 3.0 * radar.n_channels * n_chirps
+    micro = echo_power_v2(_without_body(target), f0_hz=radar.f_start_hz, dwell_s=dwell_s) \
+        if kind in ("multirotor", "bird") else 0.0
+    body_rcs = body_rcs_m2(target)
+    body_power = 0.5 * body_rcs * float(np.mean(np.asarray(expected["track"]["range_m"]) ** -4.0))
+    body_doppler = expected["body_doppler_hz"]
+    sweep_hz = body_doppler["max"] - body_doppler["min"]
+    base.update(body_doppler_max_hz=max(abs(body_doppler["max"]), abs(body_doppler["min"])),
+                has_body=body_rcs > 0, body_velocity_mps=float(expected["range_rate_mps"]["mean"]),
+                body_line_snr_db=_db(body_power / noise_v2 * gain / max(1.0, sweep_hz * dwell_s)))
+    if kind == "multirotor":
+        rotors = target.rotors
+        rates = tuple(float(r) for r in np.abs(rotors.per_rotor("rev_per_s")))
+        tip_hz = float(rotor.tip_doppler_hz(max(rates), blade_length_m=rotors.blade_length_m,
+                                            wavelength_m=wavelength_m, elevation_deg=target.elevation_deg))
+        distinct = len(np.unique(np.round(np.array(rates) * dwell_s)))  # rotors resolved in the dwell spectrum
+        lines = distinct * line_count(2 * tip_hz + sweep_hz, rotors.blades * np.mean(rates), prf_hz=prf_hz)
+        gains = getattr(rotors, "blade_gains", None)
+        return Physics(**base, micro_line_snr_db=_db(micro / noise_v2 * gain / lines), rotor_rates_hz=rates,
+                       n_blades=rotors.blades, blade_length_m=rotors.blade_length_m,
+                       elevation_deg=target.elevation_deg, blades_given=process.get("n_blades") is not None,
+                       elevation_given="elevation_deg" in process,
+                       imbalanced=gains is not None and len(set(gains)) > 1, tip_doppler_hz=tip_hz)
+    if kind == "bird":
+        spread_hz = 4.0 * wing_speed_max_mps(target) / wavelength_m
+        lines = line_count(spread_hz + sweep_hz, target.wingbeat_hz, prf_hz=prf_hz)
+        flap_glide = getattr(target, "flap_glide", None)
+        flap_run_s = dwell_s if flap_glide is None else min(dwell_s, _item(flap_glide, "flap_s"))
+        return Physics(**base, micro_line_snr_db=_db(micro / noise_v2 * gain / lines),
+                       wingbeat_hz=target.wingbeat_hz, flap_run_s=flap_run_s)
+    return Physics(**base)
+
+
+def _item(value, name):
+    """Entry ``name`` of a nested scene block, whether a dataclass or a mapping."""
+    return value[name] if isinstance(value, dict) else getattr(value, name)
+
+
+def _db(ratio):
+    return float(10 * np.log10(ratio)) if ratio > 0 else float("-inf")
+
+
+def match_rows(rows, *, range_min_m, range_max_m, range_mean_m, tolerance_m):
+    """The row of the target whose track spans ``[range_min_m, range_max_m]``, and the other detections.
+
+    A row matches when its range lies within the track widened by ``tolerance_m``; of several, the
+    nearest to ``range_mean_m``. Rows without a range (nothing detected) are neither.
+    """
+    detected = [r for r in rows if r.get("range_m") is not None]
+    near = [r for r in detected if range_min_m - tolerance_m <= r["range_m"] <= range_max_m + tolerance_m]
+    match = min(near, key=lambda r: abs(r["range_m"] - range_mean_m)) if near else None
+    return match, [r for r in detected if r is not match]

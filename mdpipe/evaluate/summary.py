@@ -1,0 +1,111 @@
+"""Tables of an evaluation: class confusion, per-feature coverage and errors, confidently wrong values.
+
+Everything here reads the scored records (one per scene x target, see :mod:`mdpipe.evaluate.run`).
+"""
+
+import numpy as np
+import pandas as pd
+
+from mdpipe.evaluate.scoring import CONFIDENTLY_WRONG, FEATURES, LINE_SNR_DB
+
+CLASSES = ("drone", "bird", "none")
+WORST_LISTED = 15
+
+
+def records_frame(records):
+    """The records as a DataFrame, one row per scene x target (the columns of ``scenes.csv``)."""
+    return pd.DataFrame.from_records(records)
+
+
+def confusion(frame):
+    """Counts of expected class (rows) x measured class (columns)."""
+    measured = list(CLASSES) + sorted(set(frame["measured_class"]) - set(CLASSES))
+    table = pd.crosstab(frame["expected_class"], frame["measured_class"])
+    return table.reindex(index=list(CLASSES), columns=measured, fill_value=0)
+
+
+def feature_table(frame):
+    """Per feature: estimable cases, confident values among them (coverage), verdict counts and the
+    error quantiles of the confident values on estimable cases (%)."""
+    rows = []
+    for feature in FEATURES:
+        verdict = frame[f"{feature}_verdict"]
+        estimable = frame[f"{feature}_estimable"].astype(bool)
+        confident = verdict.isin(("right", "wrong"))
+        errors = frame.loc[confident, f"{feature}_error"].dropna().to_numpy() * 100
+        quantiles = np.percentile(errors, [50, 90]).tolist() + [errors.max()] if len(errors) else [np.nan] * 3
+        rows.append({"feature": feature, "estimable": int(estimable.sum()), "confident": int(confident.sum()),
+                     "coverage_%": 100 * confident.sum() / estimable.sum() if estimable.sum() else np.nan,
+                     "right": int((verdict == "right").sum()), "wrong": int((verdict == "wrong").sum()),
+                     "unwarranted": int((verdict == "unwarranted").sum()),
+                     "withheld": int((verdict == "withheld").sum()), "missed": int((verdict == "missed").sum()),
+                     "err_median_%": quantiles[0], "err_90_%": quantiles[1], "err_max_%": quantiles[2]})
+    return pd.DataFrame(rows)
+
+
+def confidently_wrong(frame):
+    """Every confidently wrong value: scene, family, feature, truth, value, verdict, why (the truth's reason
+    when not estimable), relative error in %; the largest error first, values without a truth last."""
+    parts = []
+    for feature in FEATURES:
+        bad = frame[frame[f"{feature}_verdict"].isin(CONFIDENTLY_WRONG)]
+        parts.append(pd.DataFrame({
+            "scene": bad["scene"], "family": bad["family"], "band": bad["band"], "target": bad["target"],
+            "feature": feature, "truth": bad[f"{feature}_truth"], "value": bad[f"{feature}_value"],
+            "verdict": bad[f"{feature}_verdict"], "why": bad[f"{feature}_why"],
+            "error_%": bad[f"{feature}_error"] * 100}))
+    wrong = pd.concat(parts, ignore_index=True)
+    return wrong.sort_values(["error_%"], ascending=False, na_position="last").reset_index(drop=True)
+
+
+def causes(wrong):
+    """Confidently wrong values grouped by feature, verdict, family and the truth's reason."""
+    if not len(wrong):
+        return pd.DataFrame(columns=["feature", "verdict", "family", "why", "count"])
+    grouped = wrong.fillna({"why": ""}).groupby(["feature", "verdict", "family", "why"]).size()
+    return grouped.rename("count").reset_index().sort_values("count", ascending=False).reset_index(drop=True)
+
+
+def _markdown(frame, floatfmt="{:.3g}"):
+    cells = [[floatfmt.format(v) if isinstance(v, float) else str(v) for v in row] for row in frame.itertuples(index=False)]
+    header = [str(c) for c in frame.columns]
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    return "\n".join(lines + ["| " + " | ".join(row) + " |" for row in cells])
+
+
+def report(frame, *, title, wall_s, jobs):
+    """The summary as markdown text (printed and written to ``summary.md``)."""
+    subjects = frame[frame["target"] == "subject"]
+    matrix = confusion(frame)
+    class_right = int(frame["class_ok"].sum())
+    seen = frame[frame["detectable"].astype(bool) | (frame["expected_class"] == "none")]
+    wrong = confidently_wrong(frame)
+    table = feature_table(frame)
+    per_scene = subjects.drop_duplicates("scene")
+    failed = subjects[subjects["error"].fillna("") != ""]
+    lines = [f"# {title}", "",
+             f"{len(per_scene)} scenes ({', '.join(f'{k} {v}' for k, v in per_scene['family'].value_counts().items())}), "
+             f"{len(frame) - len(subjects)} extra detections; {len(failed)} captures failed.",
+             "", "## Class (rows: expected, columns: measured; extra detections are expected none)", "",
+             _markdown(matrix.reset_index().rename(columns={"expected_class": "expected"})), "",
+             f"Classes right: {class_right} / {len(frame)} ({100 * class_right / len(frame):.1f} %); "
+             f"{seen['class_ok'].sum()} / {len(seen)} ({100 * seen['class_ok'].mean():.1f} %) of the targets whose "
+             f"class-telling echo a measurement can see (blade or wing lines >= {LINE_SNR_DB:g} dB above the noise) "
+             "and of those expected none.", "",
+             "## Features (coverage = confident / estimable; errors of confident values on estimable cases)", "",
+             _markdown(table), "",
+             f"## Confidently wrong: {len(wrong)} values "
+             f"({int((wrong['verdict'] == 'wrong').sum())} more than 10 % off, "
+             f"{int((wrong['verdict'] == 'unwarranted').sum())} where the truth says not estimable), "
+             f"plus {len(frame) - class_right} wrong classes", ""]
+    if len(wrong):
+        lines += ["By cause:", "", _markdown(causes(wrong)), "", f"Worst {min(WORST_LISTED, len(wrong))}:", "",
+                  _markdown(wrong.head(WORST_LISTED)), ""]
+    if len(failed):
+        lines += [f"## Failed captures: {len(failed)}", "", _markdown(failed[["scene", "family", "error"]]), ""]
+    lines += ["## Timings", "",
+              f"wall {wall_s:.1f} s with -j {jobs}; per scene simulate median {subjects['simulate_s'].median():.2f} s "
+              f"(total {subjects['simulate_s'].sum():.1f} s), process median {subjects['process_s'].median():.2f} s "
+              f"(total {subjects['process_s'].sum():.1f} s); largest capture {int(subjects['n_chirps'].max())} chirps.",
+              ""]
+    return "\n".join(lines)

@@ -1,0 +1,233 @@
+"""mdpipe evaluate: scoring rules on hand-built rows, estimability, sweep drawing, compat, the command."""
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+from click.testing import CliRunner
+
+from conftest import XBAND, scene_mapping, simulate, slow_time
+from mdpipe.cli import main
+from mdpipe.errors import ParameterError
+from mdpipe.evaluate import run, scoring, summary, sweep
+from mdpipe.evaluate.compat import to_current_schema
+from mdpipe.simulate.scene import scene_from_mapping
+
+SWEEPS = Path(__file__).resolve().parents[1] / "configs" / "sweeps"
+# A 4-rotor, 2-blade drone at 80 rev/s, r = 0.12 m, seen at beta = 10 deg by X band at PRF 40 kHz for 0.1 s.
+DRONE = scoring.Physics(kind="multirotor", expected_class="drone", dwell_s=0.1, prf_hz=40000.0,
+                        micro_line_snr_db=30.0, body_line_snr_db=40.0, rotor_rates_hz=(80.0,) * 4, n_blades=2,
+                        blade_length_m=0.12, elevation_deg=10.0, blades_given=True, elevation_given=True,
+                        tip_doppler_hz=4.0 * np.pi * 80 * 0.12 * np.cos(np.deg2rad(10)) / 0.0306,
+                        has_body=True, body_velocity_mps=2.0)
+
+
+def test_a_value_12_percent_off_is_confidently_wrong_and_8_percent_is_right():
+    wrong = scoring.score_value("rotation_rate_hz", truth=100.0, estimable=True, value=112.0, status=None)
+    right = scoring.score_value("rotation_rate_hz", truth=100.0, estimable=True, value=92.0, status="ok")
+    assert wrong == {"confident": True, "error": pytest.approx(0.12), "verdict": "wrong"}
+    assert right == {"confident": True, "error": pytest.approx(0.08), "verdict": "right"}
+
+
+def test_a_value_under_a_caveat_is_not_confident():
+    scored = scoring.score_value("rotation_rate_hz", truth=100.0, estimable=True, value=150.0, status="assumed_blades")
+    assert scored["verdict"] == "withheld" and not scored["confident"] and np.isnan(scored["error"])
+
+
+def test_a_confident_value_where_the_truth_is_not_estimable_is_confidently_wrong():
+    # right by luck (N = 2 guessed for a 2-blade rotor whose blade count the echo does not tell): still a guess
+    scored = scoring.score_value("rotation_rate_hz", truth=80.0, estimable=False, value=80.0, status=None)
+    assert scored["verdict"] == "unwarranted" and scored["verdict"] in scoring.CONFIDENTLY_WRONG
+    assert scoring.score_value("wingbeat_freq_hz", truth=float("nan"), estimable=False, value=None,
+                               status=None)["verdict"] == "n/a"
+    assert scoring.score_value("wingbeat_freq_hz", truth=3.0, estimable=True, value=None,
+                               status=None)["verdict"] == "missed"
+
+
+def test_body_velocity_needs_a_detectable_unaliased_body_line():
+    import dataclasses
+
+    assert scoring.body_velocity_estimable(DRONE) == (True, "")
+    # 2 m/s at X band is 131 Hz; 25 kHz is beyond +-20 kHz: the velocity is known only modulo lambda PRF / 2
+    assert scoring.body_velocity_estimable(dataclasses.replace(DRONE, body_doppler_max_hz=25000.0)) \
+        == (False, "aliased")
+    assert scoring.body_velocity_estimable(dataclasses.replace(DRONE, body_line_snr_db=10.0)) == (False, "below_noise")
+    assert scoring.body_velocity_estimable(dataclasses.replace(DRONE, has_body=False)) == (False, "no_body")
+
+
+def test_body_velocity_error_is_relative_to_at_least_1_mps():
+    assert scoring.relative_error("body_velocity_mps", 0.0, 0.05) == pytest.approx(0.05)
+    assert scoring.relative_error("body_velocity_mps", -4.0, -3.0) == pytest.approx(0.25)
+
+
+def test_rotation_needs_a_knowable_blade_count():
+    import dataclasses
+
+    assert scoring.rotation_estimable(DRONE) == (True, "")
+    unknown = dataclasses.replace(DRONE, blades_given=False)
+    assert scoring.rotation_estimable(unknown) == (False, "blades_unknown")
+    assert scoring.rotation_estimable(dataclasses.replace(unknown, n_blades=3)) == (True, "")  # odd N: 2N flashes
+    assert scoring.rotation_estimable(dataclasses.replace(unknown, imbalanced=True)) == (True, "")
+    # 3 turns at 80 rev/s take 37.5 ms
+    assert scoring.rotation_estimable(dataclasses.replace(DRONE, dwell_s=0.03)) == (False, "dwell_short")
+    assert scoring.rotation_estimable(dataclasses.replace(DRONE, micro_line_snr_db=12.0)) == (False, "below_noise")
+    assert scoring.rotation_estimable(dataclasses.replace(DRONE, elevation_deg=87.0)) == (False, "elevation")
+
+
+def test_blade_length_rules():
+    import dataclasses
+
+    assert scoring.blade_length_estimable(DRONE) == (True, "")  # tip 3.1 kHz < 20 kHz, 78 harmonics
+    aliased = dataclasses.replace(DRONE, prf_hz=6000.0)  # tip 3.1 kHz > 3 kHz; chopping 160 Hz still sampled
+    assert scoring.rotation_estimable(aliased) == (True, "")
+    assert scoring.blade_length_estimable(aliased) == (False, "aliased")
+    # beta = 10 deg not given: cos = 0.985 >= 0.98, Eq. 6 still gives r within 1.5 %; beta = 20 deg does not
+    assert scoring.blade_length_estimable(dataclasses.replace(DRONE, elevation_given=False)) == (True, "")
+    assert scoring.blade_length_estimable(dataclasses.replace(DRONE, elevation_given=False, elevation_deg=20.0)) \
+        == (False, "elevation_unknown")
+    assert scoring.blade_length_estimable(dataclasses.replace(DRONE, tip_doppler_hz=900.0)) == (False, "few_harmonics")
+
+
+def test_score_row_and_coverage_arithmetic():
+    bird = scoring.Physics(kind="bird", expected_class="bird", dwell_s=2.0, prf_hz=4000.0, micro_line_snr_db=20.0,
+                           body_line_snr_db=30.0, wingbeat_hz=3.0, flap_run_s=2.0, has_body=True,
+                           body_velocity_mps=-5.0)
+    rows = [  # 3 drones, rotation estimable in all: 1 right, 1 wrong, 1 withheld; 1 bird called a drone
+        (DRONE, {"class": "drone", "rotation_rate_hz": 80.4, "body_velocity_mps": 2.05}),
+        (DRONE, {"class": "drone", "rotation_rate_hz": 120.0, "body_velocity_mps": None}),
+        (DRONE, {"class": "drone", "rotation_rate_hz": 40.0, "rotation_rate_hz_status": "assumed_blades"}),
+        (bird, {"class": "drone", "rotation_rate_hz": 12.0, "wingbeat_freq_hz": 3.05, "body_velocity_mps": -5.2}),
+    ]
+    records = [{"scene": f"s{i}", "family": p.kind, "band": "X", "target": "subject", **scoring.score_row(p, row)}
+               for i, (p, row) in enumerate(rows)]
+    frame = pd.DataFrame(records)
+    table = summary.feature_table(frame).set_index("feature")
+    rotation = table.loc["rotation_rate_hz"]
+    assert (rotation["estimable"], rotation["confident"], rotation["right"], rotation["wrong"],
+            rotation["withheld"], rotation["unwarranted"]) == (3, 2, 1, 1, 1, 1)
+    assert rotation["coverage_%"] == pytest.approx(200 / 3)
+    assert rotation["err_median_%"] == pytest.approx((0.5 + 50.0) / 2)
+    velocity = table.loc["body_velocity_mps"]
+    assert (velocity["estimable"], velocity["confident"], velocity["missed"]) == (4, 2, 2)
+    assert velocity["coverage_%"] == pytest.approx(50.0)
+    assert velocity["err_max_%"] == pytest.approx(4.0)  # 0.2 m/s of 5 m/s
+    assert summary.confusion(frame).loc["bird", "drone"] == 1 and int(frame["class_ok"].sum()) == 3
+    wrong = summary.confidently_wrong(frame)
+    assert sorted(zip(wrong["scene"], wrong["feature"], wrong["verdict"])) == [
+        ("s1", "rotation_rate_hz", "wrong"), ("s3", "rotation_rate_hz", "unwarranted")]
+
+
+def test_line_snr_of_a_point_matches_the_measured_doppler_line(tmp_path):
+    """A still point at snr_db = 0: after a Hann range FFT (gain N/3 on a real IF) and an n_chirps DFT its
+    Doppler line stands 10 log10(64 / 3 x 4000) = 49.3 dB above the mean noise bin."""
+    mapping = scene_mapping(XBAND, [{"type": "point", "rcs_m2": 1.0, "motion": {"position_m": [30.0, 0.0, 0.0]}}],
+                            noise={"snr_db": 0.0}, seed=4)
+    path, truth = simulate(tmp_path, mapping)
+    scene = scene_from_mapping(mapping)
+    physics = scoring.physics_of(scene.targets[0], truth["targets"][0], scene=scene,
+                                 noise_sigma_v=truth["simulation"]["noise_sigma_v"], process={})
+    assert physics.body_line_snr_db == pytest.approx(10 * np.log10(64 / 3 * 4000), abs=0.05)
+    signal, _params = slow_time(path, truth["targets"][0]["range_bin"])
+    power = np.abs(np.fft.fft(signal)) ** 2
+    noise = np.median(np.delete(power, power.argmax())) / np.log(2)  # exponential noise: mean = median / ln 2
+    assert 10 * np.log10(power.max() / noise) == pytest.approx(physics.body_line_snr_db, abs=1.0)
+
+
+def test_sweep_draws_are_seeded_per_scene_and_valid():
+    spec = sweep.load_sweep(SWEEPS / "smoke.yaml")
+    draws = sweep.draw_scenes(spec)
+    assert len(draws) == 6 and sweep.draw_scene(spec, 4) == draws[4]
+    assert sweep.draw_scenes(spec, limit=2) == draws[:2]
+    for draw in draws:
+        scene = scene_from_mapping(draw.scene)
+        assert scene.radar.params.prf_hz == pytest.approx(20000.0 if draw.band == "K" else 4000.0)
+        if draw.family == "quadrotor":
+            assert draw.process["n_blades"] == 2 and draw.process["elevation_deg"] == scene.targets[0].elevation_deg
+            rates = scene.targets[0].rotors.per_rotor("rev_per_s")
+            assert np.all(np.sign(rates) == [1, -1, 1, -1]) and np.ptp(np.abs(rates)) == 0
+
+
+def test_default_sweep_is_large_varied_and_runs_under_compat():
+    draws = sweep.draw_scenes(sweep.load_sweep(SWEEPS / "default.yaml"))
+    assert len(draws) >= 200 and {d.band for d in draws} == {"X", "K", "W77", "W94"}
+    kinds = [d.scene["targets"][0]["type"] if d.scene["targets"] and d.family != "clutter_only" else "clutter"
+             for d in draws]
+    assert {"multirotor", "bird", "point", "branch", "clutter"} == set(kinds)
+    assert max(d.scene["radar"]["n_chirps"] for d in draws) <= 40000
+    given = [d.process["n_blades"] is not None for d in draws if d.scene["targets"][0].get("type") == "multirotor"]
+    assert 0.3 < np.mean(given) < 0.7  # N given to about half of the drones
+    run.prepare(draws, compat=True)  # every scene accepted by the installed simulator
+
+
+def test_distributions():
+    rng = np.random.default_rng(1)
+    values = [sweep.draw_value({"loguniform": [1.0, 100.0]}, rng, "x") for _ in range(2000)]
+    assert min(values) >= 1.0 and max(values) <= 100.0
+    assert np.mean(np.log10(values)) == pytest.approx(1.0, abs=0.05)  # uniform in log: mean of log10 is 1
+    rates = sweep.draw_value({"rotor_rates": {"mean_hz": 100.0, "spread_fraction": 0.05}}, rng, "r", count=6)
+    assert np.all(np.abs(np.abs(rates) - 100.0) <= 5.0) and np.all(np.sign(rates) == [1, -1] * 3)
+    with pytest.raises(ParameterError, match=r"x: loguniform needs a low bound > 0"):
+        sweep.draw_value({"loguniform": [0.0, 1.0]}, rng, "x")
+    with pytest.raises(ParameterError, match=r"y: per_rotor is for keys inside a multirotor's rotors block"):
+        sweep.draw_value({"per_rotor": 1.0}, rng, "y")
+
+
+def test_compat_reduces_new_keys_to_the_installed_schema():
+    mapping = scene_mapping(XBAND, [
+        {"type": "multirotor", "motion": {"position_m": [20.0, 0.0, 0.0]}, "body_scatterers": [],
+         "rotors": {"count": 4, "blade_length_m": 0.1, "rev_per_s": [80.0], "blade_profile": "tapered"}},
+        {"type": "branch", "position_m": [10.0, 0.0, 0.0], "rcs_m2": 0.5, "sway_amplitude_m": 0.02, "sway_hz": 0.5}],
+        noise={"moving_snr_db": 10.0})
+    reduced, changes = to_current_schema(mapping)
+    scene_from_mapping(reduced)  # accepted
+    assert "targets[0].rotors.blade_profile" in changes and "targets[0].body_scatterers" in changes
+    assert reduced["noise"] == {"snr_db": 10.0} and reduced["targets"][1]["type"] == "point"
+    assert reduced["targets"][1]["motion"]["sway_period_s"] == 2.0
+    assert to_current_schema(reduced) == (reduced, [])
+
+
+def test_evaluate_command_writes_its_files(tmp_path):
+    (tmp_path / "scenes").mkdir()
+    (tmp_path / "scenes" / "0099_old_run.yaml").write_text("name: old\n")
+    result = CliRunner().invoke(main, ["evaluate", str(SWEEPS / "smoke.yaml"), "--out", str(tmp_path), "-j", "1"])
+    assert result.exit_code == 0, result.output
+    table = pd.read_csv(tmp_path / "scenes.csv")
+    subjects = table[table["target"] == "subject"]
+    assert sorted(subjects["scene"]) == sorted(p.stem for p in (tmp_path / "scenes").glob("*.yaml"))
+    assert len(subjects) == 6 and not (tmp_path / "captures").exists()
+    for feature in scoring.FEATURES:
+        assert {f"{feature}_truth", f"{feature}_value", f"{feature}_verdict"} <= set(table.columns)
+    text = (tmp_path / "summary.md").read_text()
+    assert "## Class" in text and "## Confidently wrong" in text and text.strip() in result.output
+
+
+def test_a_capture_the_processing_fails_on_is_recorded_as_a_wrong_class(tmp_path, monkeypatch):
+    import mdpipe.process.pipeline
+
+    def fail(*_args, **_kwargs):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(mdpipe.process.pipeline, "process_capture", fail)
+    draw = sweep.draw_scene(sweep.load_sweep(SWEEPS / "smoke.yaml"), 5)
+    [(draw, mapping, changes)] = run.prepare([draw], compat=False)
+    (tmp_path / "scenes").mkdir()
+    (tmp_path / "captures").mkdir()
+    [record] = run.run_scene(draw, mapping, changes, tmp_path)
+    assert record["measured_class"] == "error" and not record["class_ok"]
+    assert record["error"] == "RuntimeError: boom" and not list((tmp_path / "captures").iterdir())
+    text = summary.report(summary.records_frame([record]), title="t", wall_s=1.0, jobs=1)
+    assert "1 captures failed" in text and "| 0005_moving_point | moving_point | RuntimeError: boom |" in text
+
+
+def test_evaluate_rejects_a_bad_sweep(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("seed: 1\nn_scenes: 3\nbands: {X: 9.8e9}\n")
+    result = CliRunner().invoke(main, ["evaluate", str(bad), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert "families: missing (see configs/sweeps/default.yaml)" in result.output
+    assert "Traceback" not in result.output
+    bad.write_text((SWEEPS / "smoke.yaml").read_text().replace("type: point,", "type: point, wobble_hz: 3,"))
+    result = CliRunner().invoke(main, ["evaluate", str(bad), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2 and "Traceback" not in result.output
+    assert "targets[0].wobble_hz: unknown key" in result.output and "run with --compat" in result.output
