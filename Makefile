@@ -56,12 +56,10 @@ bench-scale: $(MDPIPE)
 paper: $(MDPIPE)
 	$(MDPIPE) paper --out reports
 
-# The benchmark of issue 8: 240 seeded scenes (drones, birds, negatives; X / K / 77 / 94 GHz) simulated,
-# processed and scored against what their physics makes estimable (~2-3 min on 2 cores). EVALUATE_FLAGS=--compat
-# while the simulator does not know the sweep's realism keys yet.
-EVALUATE_FLAGS ?=
+# The evaluation benchmark: 240 seeded scenes (drones, birds, negatives; X / K / 77 / 94 GHz) simulated,
+# processed and scored against what their physics makes estimable (a few minutes on 2 cores).
 evaluate: $(MDPIPE)
-	$(MDPIPE) evaluate configs/sweeps/default.yaml --out out/evaluate -j 2 $(EVALUATE_FLAGS)
+	$(MDPIPE) evaluate configs/sweeps/default.yaml --out out/evaluate -j 2
 
 # Every capture under IN, processed in parallel (make -j4 batch IN=captures OUT=results). A capture is
 # processed again only when it is newer than its table; one that fails leaves OUT/<stem>.error.txt and

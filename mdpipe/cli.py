@@ -310,10 +310,8 @@ def paper(out_dir, configs_dir):
               help="Folder for scenes/, scenes.csv and summary.md.")
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=1, show_default=True, help="Worker processes.")
 @click.option("--limit", type=click.IntRange(min=1), help="Run only the first LIMIT scenes of the sweep.")
-@click.option("--compat", is_flag=True,
-              help="Drop or translate scene keys the installed simulator does not know (listed per scene).")
 @click.option("--keep-captures", is_flag=True, help="Keep the simulated captures in OUT/captures/.")
-def evaluate(sweep_path, out_dir, jobs, limit, compat, keep_captures):
+def evaluate(sweep_path, out_dir, jobs, limit, keep_captures):
     """Draw the scenes of SWEEP, simulate, process and score them against their truth.
 
     Writes OUT/scenes/<scene>.yaml (each rerunnable with mdpipe simulate + process), OUT/scenes.csv
@@ -327,10 +325,10 @@ def evaluate(sweep_path, out_dir, jobs, limit, compat, keep_captures):
 
     start = time.perf_counter()
     draws = sweep.draw_scenes(sweep.load_sweep(sweep_path), limit=limit)
-    prepared = run.prepare(draws, compat=compat)
+    prepared = run.prepare(draws)
     out_dir.mkdir(parents=True, exist_ok=True)
     frame = summary.records_frame(run.run_all(prepared, out_dir, jobs=jobs, keep_captures=keep_captures))
-    text = summary.report(frame, title=f"mdpipe evaluate {sweep_path}{' --compat' if compat else ''}",
+    text = summary.report(frame, title=f"mdpipe evaluate {sweep_path}",
                           wall_s=time.perf_counter() - start, jobs=jobs)
     atomic_write(out_dir / "scenes.csv", lambda tmp: frame.to_csv(tmp, index=False))
     atomic_write(out_dir / "summary.md", lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))

@@ -1,4 +1,4 @@
-"""mdpipe evaluate: scoring rules on hand-built rows, estimability, sweep drawing, compat, the command."""
+"""mdpipe evaluate: scoring rules on hand-built rows, estimability, sweep drawing, the command."""
 
 from pathlib import Path
 
@@ -11,7 +11,6 @@ from conftest import XBAND, scene_mapping, simulate, slow_time
 from mdpipe.cli import main
 from mdpipe.errors import ParameterError
 from mdpipe.evaluate import run, scoring, summary, sweep
-from mdpipe.evaluate.compat import to_current_schema
 from mdpipe.simulate.scene import scene_from_mapping
 
 SWEEPS = Path(__file__).resolve().parents[1] / "configs" / "sweeps"
@@ -148,7 +147,7 @@ def test_sweep_draws_are_seeded_per_scene_and_valid():
             assert np.all(np.sign(rates) == [1, -1, 1, -1]) and np.ptp(np.abs(rates)) == 0
 
 
-def test_default_sweep_is_large_varied_and_runs_under_compat():
+def test_default_sweep_is_large_varied_and_every_scene_is_accepted():
     draws = sweep.draw_scenes(sweep.load_sweep(SWEEPS / "default.yaml"))
     assert len(draws) >= 200 and {d.band for d in draws} == {"X", "K", "W77", "W94"}
     kinds = [d.scene["targets"][0]["type"] if d.scene["targets"] and d.family != "clutter_only" else "clutter"
@@ -157,7 +156,7 @@ def test_default_sweep_is_large_varied_and_runs_under_compat():
     assert max(d.scene["radar"]["n_chirps"] for d in draws) <= 40000
     given = [d.process["n_blades"] is not None for d in draws if d.scene["targets"][0].get("type") == "multirotor"]
     assert 0.3 < np.mean(given) < 0.7  # N given to about half of the drones
-    run.prepare(draws, compat=True)  # every scene accepted by the installed simulator
+    run.prepare(draws)  # every scene accepted by the simulator
 
 
 def test_distributions():
@@ -171,20 +170,6 @@ def test_distributions():
         sweep.draw_value({"loguniform": [0.0, 1.0]}, rng, "x")
     with pytest.raises(ParameterError, match=r"y: per_rotor is for keys inside a multirotor's rotors block"):
         sweep.draw_value({"per_rotor": 1.0}, rng, "y")
-
-
-def test_compat_reduces_new_keys_to_the_installed_schema():
-    mapping = scene_mapping(XBAND, [
-        {"type": "multirotor", "motion": {"position_m": [20.0, 0.0, 0.0]}, "body_scatterers": [],
-         "rotors": {"count": 4, "blade_length_m": 0.1, "rev_per_s": [80.0], "blade_profile": "tapered"}},
-        {"type": "branch", "position_m": [10.0, 0.0, 0.0], "rcs_m2": 0.5, "sway_amplitude_m": 0.02, "sway_hz": 0.5}],
-        noise={"moving_snr_db": 10.0})
-    reduced, changes = to_current_schema(mapping)
-    scene_from_mapping(reduced)  # accepted
-    assert "targets[0].rotors.blade_profile" in changes and "targets[0].body_scatterers" in changes
-    assert reduced["noise"] == {"snr_db": 10.0} and reduced["targets"][1]["type"] == "point"
-    assert reduced["targets"][1]["motion"]["sway_period_s"] == 2.0
-    assert to_current_schema(reduced) == (reduced, [])
 
 
 def test_evaluate_command_writes_its_files(tmp_path):
@@ -210,10 +195,10 @@ def test_a_capture_the_processing_fails_on_is_recorded_as_a_wrong_class(tmp_path
 
     monkeypatch.setattr(mdpipe.process.pipeline, "process_capture", fail)
     draw = sweep.draw_scene(sweep.load_sweep(SWEEPS / "smoke.yaml"), 5)
-    [(draw, mapping, changes)] = run.prepare([draw], compat=False)
+    [(draw, mapping)] = run.prepare([draw])
     (tmp_path / "scenes").mkdir()
     (tmp_path / "captures").mkdir()
-    [record] = run.run_scene(draw, mapping, changes, tmp_path)
+    [record] = run.run_scene(draw, mapping, tmp_path)
     assert record["measured_class"] == "error" and not record["class_ok"]
     assert record["error"] == "RuntimeError: boom" and not list((tmp_path / "captures").iterdir())
     text = summary.report(summary.records_frame([record]), title="t", wall_s=1.0, jobs=1)
@@ -230,4 +215,4 @@ def test_evaluate_rejects_a_bad_sweep(tmp_path):
     bad.write_text((SWEEPS / "smoke.yaml").read_text().replace("type: point,", "type: point, wobble_hz: 3,"))
     result = CliRunner().invoke(main, ["evaluate", str(bad), "--out", str(tmp_path / "out")])
     assert result.exit_code == 2 and "Traceback" not in result.output
-    assert "targets[0].wobble_hz: unknown key" in result.output and "run with --compat" in result.output
+    assert "targets[0].wobble_hz: unknown key" in result.output

@@ -10,7 +10,6 @@ from threadpoolctl import threadpool_limits
 
 from mdpipe.errors import ParameterError
 from mdpipe.evaluate import scoring
-from mdpipe.evaluate.compat import to_current_schema
 from mdpipe.params import ProcessParams
 
 SCENES_DIR = "scenes"
@@ -18,42 +17,29 @@ CAPTURES_DIR = "captures"
 
 
 def process_params(process):
-    """:class:`ProcessParams` for a scene's ``process`` keywords, and the blade count used.
-
-    ``n_blades=None`` means *not given*: automatic where ProcessParams accepts None, else its default
-    (the guess a user who does not know N gets today); the second value says which (``given``,
-    ``auto`` or ``default``).
-    """
-    kwargs = dict(process)
-    if kwargs.get("n_blades") is not None:
-        return ProcessParams(**kwargs), "given"
-    try:
-        return ProcessParams(**kwargs), "auto"
-    except (ParameterError, TypeError):
-        kwargs.pop("n_blades")
-        return ProcessParams(**kwargs), "default"
+    """:class:`ProcessParams` for a scene's ``process`` keywords, and whether the blade count was given
+    (``given``) or left to the echo (``auto``)."""
+    return ProcessParams(**process), "auto" if process.get("n_blades") is None else "given"
 
 
-def prepare(draws, *, compat):
-    """Each draw's scene mapping as the simulator will get it, validated, with the changes ``--compat`` made.
+def prepare(draws):
+    """Each draw with its scene mapping, validated by the simulator.
 
-    Raises :class:`ParameterError` naming the first scene the installed simulator rejects.
+    Raises :class:`ParameterError` naming the first scene the simulator rejects.
     """
     from mdpipe.simulate.scene import scene_from_mapping
 
     prepared = []
     for draw in draws:
-        mapping, changes = to_current_schema(draw.scene) if compat else (draw.scene, [])
         try:
-            scene_from_mapping(mapping)
+            scene_from_mapping(draw.scene)
         except ParameterError as exc:
-            hint = "" if compat else "; if the simulator does not know this key yet, run with --compat"
-            raise ParameterError(f"scene {draw.name}: {exc}{hint}") from None
-        prepared.append((draw, mapping, changes))
+            raise ParameterError(f"scene {draw.name}: {exc}") from None
+        prepared.append((draw, draw.scene))
     return prepared
 
 
-def write_scene_yaml(path, draw, mapping, changes):
+def write_scene_yaml(path, draw, mapping):
     """The drawn scene as a scene YAML with the command lines that rerun it."""
     options = ""
     if draw.process.get("n_blades") is not None:
@@ -63,8 +49,6 @@ def write_scene_yaml(path, draw, mapping, changes):
     header = [f"# family {draw.family}, band {draw.band}. Rerun:",
               f"#   mdpipe simulate --config {path.name} -o {draw.name}.h5",
               f"#   mdpipe process {draw.name}.h5{options}"]
-    if changes:
-        header.append(f"# --compat changed: {', '.join(changes)}")
     path.write_text("\n".join(header) + "\n" + yaml.safe_dump(mapping, sort_keys=False), encoding="utf-8")
 
 
@@ -102,7 +86,7 @@ def score_scene(draw, scene, truth, rows, *, process):
     return records
 
 
-def run_scene(draw, mapping, changes, out_dir, keep_captures=False):
+def run_scene(draw, mapping, out_dir, keep_captures=False):
     """Simulate, process and score one prepared scene; a list of record dicts (see :func:`score_scene`).
 
     A capture the processing fails on (any exception: the benchmark measures the processing, it does
@@ -113,7 +97,7 @@ def run_scene(draw, mapping, changes, out_dir, keep_captures=False):
     from mdpipe.simulate.scene import scene_from_mapping, scene_to_yaml
 
     out_dir = Path(out_dir)
-    write_scene_yaml(out_dir / SCENES_DIR / f"{draw.name}.yaml", draw, mapping, changes)
+    write_scene_yaml(out_dir / SCENES_DIR / f"{draw.name}.yaml", draw, mapping)
     capture = out_dir / CAPTURES_DIR / f"{draw.name}.h5"
     scene = scene_from_mapping(mapping)
     params, blades_source = process_params(draw.process)
@@ -121,7 +105,7 @@ def run_scene(draw, mapping, changes, out_dir, keep_captures=False):
               "wavelength_m": scene.radar.params.wavelength_m, "prf_hz": scene.radar.params.prf_hz,
               "n_chirps": scene.radar.n_chirps, "dwell_s": scene.radar.params.duration_s(scene.radar.n_chirps),
               "n_blades_given": draw.process.get("n_blades"), "n_blades_source": blades_source,
-              "elevation_given": "elevation_deg" in draw.process, "compat_changes": ";".join(changes)}
+              "elevation_given": "elevation_deg" in draw.process}
     with threadpool_limits(limits=1):
         start = time.perf_counter()
         truth = simulate_to_file(scene, capture, scene_yaml=scene_to_yaml(mapping))
@@ -150,7 +134,7 @@ def run_all(prepared, out_dir, *, jobs=1, keep_captures=False):
         (out_dir / sub).mkdir(parents=True, exist_ok=True)
     for stale in (out_dir / SCENES_DIR).glob("*.yaml"):  # scenes.csv will describe this run's scenes only
         stale.unlink()
-    args = [(draw, mapping, changes, out_dir, keep_captures) for draw, mapping, changes in prepared]
+    args = [(draw, mapping, out_dir, keep_captures) for draw, mapping in prepared]
     if jobs == 1:
         results = [run_scene(*a) for a in args]
     else:

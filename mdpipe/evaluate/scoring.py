@@ -20,7 +20,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from mdpipe.physics import rotor
-from mdpipe.simulate.echoes import target_echo, wing_speed_max_mps
+from mdpipe.simulate.targets import module_of, target_echo
+from mdpipe.simulate.targets.bird import wing_speed_max_mps
 
 FEATURES = ("rotation_rate_hz", "blade_length_m", "wingbeat_freq_hz", "body_velocity_mps")
 CLASS_OF_KIND = {"multirotor": "drone", "bird": "bird"}
@@ -254,11 +255,13 @@ def _without_body(target):
     return dataclasses.replace(target, **changes)
 
 
-def echo_power_v2(target, *, f0_hz, dwell_s):
+def echo_power_v2(target, *, f0_hz, dwell_s, seed=0, index=0):
     """Mean IF power of ``target`` over the dwell (V^2 per real sample, ``|s|^2 / 2``), at random instants
-    (a fixed seed; regular instants could strobe with the blade flashes)."""
+    (a fixed seed; regular instants could strobe with the blade flashes). ``seed``, ``index``: the scene's
+    seed and the target's place, which fix its random draws (rate wander, rough wings, leaves)."""
     t_s = np.sort(np.random.default_rng(0).uniform(0.0, dwell_s, POWER_SAMPLES))
-    return 0.5 * float(np.mean(np.abs(target_echo(target, t_s, f0_hz=f0_hz).signal) ** 2))
+    realization = module_of(target).realize(target, seed=seed, index=index, duration_s=dwell_s)
+    return 0.5 * float(np.mean(np.abs(target_echo(target, realization, t_s, f0_hz=f0_hz).signal) ** 2))
 
 
 def line_count(extent_hz, spacing_hz, *, prf_hz):
@@ -291,7 +294,8 @@ def physics_of(target, expected, *, scene, noise_sigma_v, process):
         return Physics(**base)
     noise_v2 = noise_sigma_v ** 2 if noise_sigma_v > 0 else np.finfo(float).tiny
     gain = radar.n_samples / 3.0 * radar.n_channels * n_chirps
-    micro = echo_power_v2(_without_body(target), f0_hz=radar.f_start_hz, dwell_s=dwell_s) \
+    micro = echo_power_v2(_without_body(target), f0_hz=radar.f_start_hz, dwell_s=dwell_s, seed=scene.seed,
+                          index=scene.targets.index(target)) \
         if kind in ("multirotor", "bird") else 0.0
     body_rcs = body_rcs_m2(target)
     body_power = 0.5 * body_rcs * float(np.mean(np.asarray(expected["track"]["range_m"]) ** -4.0))

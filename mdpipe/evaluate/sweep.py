@@ -142,14 +142,16 @@ def _drop_none(value):
 
 def _draw_target(template, rng, path):
     """The target template drawn (null entries left out); a multirotor's ``rotors.count`` first, for its
-    per-rotor entries."""
+    per-rotor entries. A ``rotors.merge`` entry draws a mapping of keys that go together (a blade profile
+    and its parameters) and is merged into ``rotors``."""
     template = dict(template)
     rotors = template.pop("rotors", None)
     target = draw_value(template, rng, path)
     if rotors is not None:
         rotors = dict(rotors)
         count = draw_value(rotors.pop("count", 1), rng, f"{path}.rotors.count")
-        target["rotors"] = {"count": count, **draw_value(rotors, rng, f"{path}.rotors", count=count)}
+        drawn = draw_value(rotors, rng, f"{path}.rotors", count=count)
+        target["rotors"] = {"count": count, **(drawn.pop("merge", None) or {}), **drawn}
     return _drop_none(target)
 
 
@@ -217,11 +219,33 @@ def clutter_targets(spec, rng, path, *, radar):
 
 
 def draw_scene(sweep, index):
-    """Draw scene ``index`` of ``sweep`` (a validated mapping from :func:`load_sweep`); a :class:`Draw`."""
+    """Draw scene ``index`` of ``sweep`` (a validated mapping from :func:`load_sweep`); a :class:`Draw`.
+
+    A draw the simulator refuses as implausible (micro-Doppler over 10x the span, a target beyond the
+    maximum range...) is drawn again within its family, up to ``MAX_DRAWS`` times: a sweep holds scenes a
+    radar could see.
+    """
+    from mdpipe.simulate.scene import scene_from_mapping
+
+    for attempt in range(MAX_DRAWS):
+        draw = _draw_scene(sweep, index, attempt)
+        try:
+            scene_from_mapping(draw.scene)
+        except ParameterError as exc:
+            refusal = exc
+            continue
+        return draw
+    raise ParameterError(f"scene {draw.name}: {MAX_DRAWS} draws refused by the simulator, the last: {refusal}")
+
+
+def _draw_scene(sweep, index, attempt):
+    """Scene ``index``'s family, and its draw number ``attempt`` within that family."""
     rng = np.random.default_rng([int(sweep["seed"]), index])
     names = list(sweep["families"])
     weights = np.array([float(sweep["families"][n].get("weight", 1.0)) for n in names])
     family_name = names[int(rng.choice(len(names), p=weights / weights.sum()))]
+    if attempt:
+        rng = np.random.default_rng([int(sweep["seed"]), index, attempt])
     family = sweep["families"][family_name]
     path = f"families.{family_name}"
     name = f"{index:04d}_{family_name}"
@@ -247,6 +271,9 @@ def draw_scene(sweep, index):
     scene = {"name": name, "seed": int(rng.integers(2 ** 31)), "radar": radar,
              "noise": draw_value(family.get("noise", {}), rng, f"{path}.noise"), "targets": targets}
     return Draw(name=name, family=family_name, band=band, scene=scene, process=process)
+
+
+MAX_DRAWS = 20
 
 
 def validate_sweep(sweep, source):
