@@ -99,7 +99,7 @@ def simulate(config_path, out_path, seed, chirps, channels, snr_db, force, max_m
     The capture is written under a hidden temporary name beside the output and renamed when complete;
     on an error, Ctrl-C or SIGTERM nothing is left behind.
     """
-    from mdpipe.simulate.run import simulate_to_file
+    from mdpipe.simulate.run import check_output, simulate_to_file
     from mdpipe.simulate.scene import load_scene_mapping, scene_from_mapping, scene_to_yaml
 
     data = load_scene_mapping(config_path)
@@ -120,15 +120,16 @@ def simulate(config_path, out_path, seed, chirps, channels, snr_db, force, max_m
     radar = scene.radar
     total = radar.n_chirps * radar.n_samples * radar.n_channels
     yaml_text = scene_to_yaml(data)
-    options = dict(scene_yaml=yaml_text, overwrite=force, max_memory_gb=max_memory_gb)
+    options = dict(overwrite=force, max_memory_gb=max_memory_gb)
+    check_output(scene, out_path, **options)  # before the progress bar shows
     try:
         with terminate_as_exit():
             if total >= PROGRESS_MIN_SAMPLES:
                 with click.progressbar(length=radar.n_chirps, label=f"simulating {out_path.name}",
                                        file=sys.stderr) as bar:
-                    truth = simulate_to_file(scene, out_path, progress=bar.update, **options)
+                    truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text, progress=bar.update, **options)
             else:
-                truth = simulate_to_file(scene, out_path, **options)
+                truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text, **options)
     except FileExistsError:
         raise InputError(f"{out_path}: appeared while simulating; pass --force to replace it") from None
     except OSError as exc:

@@ -142,7 +142,7 @@ def _locate(h5, name, path, *, allow_external, shown=None, hops=0):
     return obj
 
 
-def _check_storage(ds, name, path, *, allow_external, file_size):
+def _check_storage(ds, name, path, *, allow_external):
     """Refuse data stored outside the file, and a declared shape the stored bytes cannot hold.
 
     A virtual dataset or external raw storage reads other files (a missing source reads as fill
@@ -157,15 +157,18 @@ def _check_storage(ds, name, path, *, allow_external, file_size):
                                      f"refused: it reads other files ({ALLOW_EXTERNAL})")
         return
     if ds.external:
-        files = [str(entry[0]) for entry in ds.external]
+        files = [os.fsdecode(entry[0]) for entry in ds.external]
         if not allow_external:
             raise CaptureFormatError(f"{path}: '/{name}' keeps its samples outside the file, in "
                                      f"{', '.join(files)} (external raw storage); refused ({ALLOW_EXTERNAL})")
-        folder = os.path.dirname(os.path.abspath(path))
-        for entry in ds.external:
-            check_regular_file(os.path.join(folder, os.fsdecode(entry[0])))
-        if sum(int(entry[2]) for entry in ds.external) < declared:
-            raise CaptureFormatError(f"{path}: '/{name}' declares {shape} but its external files hold fewer")
+        available = 0
+        for file_name, offset, size in ds.external:  # relative names are found from the working folder, as HDF5 does
+            external_path = os.path.abspath(os.fsdecode(file_name))
+            check_regular_file(external_path)
+            available += max(0, min(int(size), os.path.getsize(external_path) - int(offset)))
+        if available < declared:
+            raise CaptureFormatError(f"{path}: '/{name}' declares {shape} but its external files hold {available:,} "
+                                     "bytes of it; the rest would read as invented zeros")
         return
     stored = ds.id.get_storage_size()
     if ds.chunks is not None:
@@ -179,6 +182,7 @@ def _check_storage(ds, name, path, *, allow_external, file_size):
             raise CaptureFormatError(f"{path}: '/{name}' declares {shape} but stores {stored:,} bytes")
         return
     offset = ds.id.get_offset()
+    file_size = os.path.getsize(ds.file.filename)  # the file holding it: another one through an allowed link
     if stored < declared or (offset is not None and offset + declared > file_size):
         raise CaptureFormatError(
             f"{path}: '/{name}' declares {shape} but the file stores {min(stored, max(file_size - (offset or 0), 0)):,} "
@@ -186,7 +190,6 @@ def _check_storage(ds, name, path, *, allow_external, file_size):
 
 
 def _sample_datasets(h5, path, *, allow_external):
-    file_size = os.path.getsize(path)
     if h5.get("Data", getlink=True) is not None:
         data = _locate(h5, "/Data", path, allow_external=allow_external)
         if not isinstance(data, h5py.Dataset):
@@ -218,7 +221,7 @@ def _sample_datasets(h5, path, *, allow_external):
             raise CaptureFormatError(
                 f"{path}: samples are {ds.dtype}; Radarlog samples must be int16 (or float32/float64), "
                 f"the same in every channel ('/{name}')")
-        _check_storage(ds, name, path, allow_external=allow_external, file_size=file_size)
+        _check_storage(ds, name, path, allow_external=allow_external)
     return ("3-D" if names == ["Data"] else "per-channel"), datasets
 
 
@@ -370,8 +373,7 @@ class RadarlogReader:
         try:
             obj = _locate(self._h5, f"/{name}", self.path, allow_external=allow_external)
             if isinstance(obj, h5py.Dataset):
-                _check_storage(obj, name, self.path, allow_external=allow_external,
-                               file_size=os.path.getsize(self.path))
+                _check_storage(obj, name, self.path, allow_external=allow_external)
         except CaptureFormatError as exc:
             self.warnings.append(f"ignored /{name}: {str(exc).removeprefix(self.path + ': ')}")
             return None
