@@ -47,7 +47,7 @@ def publish(tmp, path, *, overwrite=True):
         return
     try:
         os.link(tmp, path, follow_symlinks=False)
-    except FileExistsError:
+    except FileExistsError:  # the name is taken: the caller says so
         raise
     except OSError:  # a file system without hard links: the check and the rename are then two steps
         if os.path.lexists(path):

@@ -42,8 +42,10 @@ SAMPLE_DTYPES = (np.int16, np.float32, np.float64)
 INT16_FULL_SCALE = 32767  # int16 samples span -32768 .. 32767 counts
 DETECTION_CHIRPS = 256
 DEFAULT_CHUNK_CHIRPS = 256
-MAX_TEXT_BYTES = 1 << 20  # /Truth attributes
+MAX_TEXT_CHARS = 1 << 20  # /Truth attributes (no larger than the file: attributes are not compressed)
 MAX_JSON_DEPTH = 32
+MAX_LINK_HOPS = 16
+ALLOW_EXTERNAL = "pass --allow-external for a trusted file"
 
 
 @dataclass(frozen=True)
@@ -89,10 +91,6 @@ def _read_attributes(attrs, path, overrides):
     return prefix, values
 
 
-MAX_LINK_HOPS = 16
-ALLOW_EXTERNAL = "pass --allow-external for a trusted file"
-
-
 def check_regular_file(path):
     """Raise :class:`CaptureFormatError` unless ``path`` is an existing regular file (a FIFO would hang the open)."""
     try:
@@ -114,14 +112,12 @@ def _locate(h5, name, path, *, allow_external, shown=None, hops=0):
     dangles or loops is an error. Nothing outside the file is opened before it is allowed.
     """
     shown = shown or name
-    group = h5["/"]
     parts = [part for part in name.split("/") if part]
-    obj = group
+    obj = h5["/"]
     for index, part in enumerate(parts):
         where = "/" + "/".join(parts[:index + 1])
         if not isinstance(obj, h5py.Group):
-            raise CaptureFormatError(f"{path}: '{shown}' leads through '{'/'.join(where.split('/')[:-1])}', "
-                                     "which is not a group")
+            raise CaptureFormatError(f"{path}: '{shown}' leads through '{obj.name}', which is not a group")
         group = obj
         link = group.get(part, getlink=True)
         if link is None:
@@ -140,6 +136,11 @@ def _locate(h5, name, path, *, allow_external, shown=None, hops=0):
         else:
             obj = group[part]
     return obj
+
+
+def _filtered(ds):
+    """True when ``ds`` is stored through filters (compression): its chunks are decoded whole."""
+    return ds.chunks is not None and ds.id.get_create_plist().get_nfilters() > 0
 
 
 def _check_storage(ds, name, path, *, allow_external):
@@ -178,7 +179,7 @@ def _check_storage(ds, name, path, *, allow_external):
             raise CaptureFormatError(
                 f"{path}: '/{name}' declares {shape} in {expected:,} chunks but stores {allocated:,} "
                 f"({stored:,} bytes); the missing chunks would read as invented fill values")
-        if ds.id.get_create_plist().get_nfilters() == 0 and stored < declared:
+        if not _filtered(ds) and stored < declared:
             raise CaptureFormatError(f"{path}: '/{name}' declares {shape} but stores {stored:,} bytes")
         return
     offset = ds.id.get_offset()
@@ -238,17 +239,16 @@ def _name_attribute(exc):
 
 
 def _text_attribute(attrs, name):
-    """A string attribute of at most ``MAX_TEXT_BYTES``, or None when absent."""
+    """A string attribute of at most ``MAX_TEXT_CHARS``, or None when absent."""
     if name not in attrs:
         return None
-    size = attrs.get_id(name).get_storage_size()
-    if size > MAX_TEXT_BYTES:
-        raise ValueError(f"attribute {name} holds {size:,} bytes (more than {MAX_TEXT_BYTES:,})")
     value = attrs[name]
     if isinstance(value, bytes):
         value = value.decode("utf-8")
     if not isinstance(value, str):
         raise TypeError(f"attribute {name} is not a string")
+    if len(value) > MAX_TEXT_CHARS:
+        raise ValueError(f"attribute {name} holds {len(value):,} characters (more than {MAX_TEXT_CHARS:,})")
     return value
 
 
@@ -300,6 +300,9 @@ class RadarlogReader:
     def __init__(self, path, *, frame_counter="auto", overrides=None, allow_external=False):
         self.path = os.fspath(path)
         self.warnings = []
+        self._first_chirp = None  # of every channel, to tell constant data (a fill value) from a signal
+        self._varies = False
+        self._lock = threading.Lock()
         check_regular_file(self.path)
         try:
             self._h5 = h5py.File(self.path, "r")
@@ -334,8 +337,7 @@ class RadarlogReader:
         self._n_channels = n_channels
         dtype = datasets[0].dtype
         self.read_chunk_bytes = max(
-            (int(np.prod(ds.chunks)) * dtype.itemsize for ds in datasets
-             if ds.chunks is not None and ds.id.get_create_plist().get_nfilters() > 0), default=0)
+            (int(np.prod(ds.chunks)) * dtype.itemsize for ds in datasets if _filtered(ds)), default=0)
         if values["n_samples"] != row_length:
             raise CaptureFormatError(
                 f"{path}: attribute N={values['n_samples']} but chirps hold {row_length} samples; "
@@ -362,9 +364,6 @@ class RadarlogReader:
         self.n_chirps = int(n_chirps)
         self.layout = Layout(prefix, kind, str(dtype), bool(frame_counter))
         self.truth = self._truth(allow_external)
-        self._first_chirp = None  # of every channel, to tell constant data (a fill value) from a signal
-        self._varies = False
-        self._lock = threading.Lock()
 
     def _optional(self, name, allow_external, kind):
         """The object ``/name`` if present, safe to read and of ``kind``; otherwise None and a warning."""
@@ -525,16 +524,10 @@ def create_hdf5_exclusive(path, *, attempts=100):
     folder, name = os.path.split(os.path.abspath(path))
     for _ in range(attempts):
         candidate = os.path.join(folder, f".{name}.{os.urandom(6).hex()}.partial")
-        try:
+        try:  # without HDF5's file lock, so that the file can be reopened while its descriptor is held
             return h5py.File(candidate, "x", locking=False), candidate
         except FileExistsError:
             continue
-        except OSError as exc:
-            if os.path.lexists(candidate):
-                continue
-            if not os.path.isdir(folder):
-                raise FileNotFoundError(f"{folder}: no such folder") from None
-            raise
     raise FileExistsError(f"{folder}: no free temporary name after {attempts} attempts")
 
 
@@ -542,10 +535,11 @@ class CaptureWriter:
     """Write a canonical Radarlog capture chunk by chunk; the file appears only when complete.
 
     Use as a context manager. Data go to a new hidden file beside ``path``, created exclusively
-    (:func:`mdpipe.outputs.create_temporary`: a symlink or file planted there is never followed),
-    written through its descriptor only, and renamed to ``path`` on success; on any exception,
-    KeyboardInterrupt and SystemExit included, it is removed. With ``overwrite=False`` an existing
-    ``path`` is kept and :class:`FileExistsError` raised.
+    (:func:`create_hdf5_exclusive`: a symlink or file planted there is never followed), written
+    through a descriptor of that file (``/Truth`` reopens it by name and checks it is the same file),
+    and renamed to ``path`` on success; on any exception, KeyboardInterrupt and SystemExit included,
+    it is removed. With ``overwrite=False`` an existing ``path`` is kept and :class:`FileExistsError`
+    raised.
 
     HDF5 allocates every row chunk of every channel when the datasets are made (early allocation,
     no fill); the chunks' byte offsets are looked up once, and :meth:`write_chirps` writes the rows

@@ -82,11 +82,6 @@ def synthesize_channel(lhs, rhs, out, *, sigma_lsb, rng):
     return clipped
 
 
-def capture_bytes(radar, n_chirps):
-    """Bytes of the samples of a simulated capture, int16: ``n_chirps x N x NrChn x 2``."""
-    return n_chirps * radar.n_samples * radar.n_channels * 2
-
-
 def _check_budget(needed, budget_gb, what):
     if needed > budget_gb * GIB:
         raise ParameterError(f"simulating would need about {needed / GIB:.3g} GB of memory ({what}), over the "
@@ -105,10 +100,11 @@ def check_output(scene, out_path, *, overwrite, chunk_chirps=CHUNK_CHIRPS, max_m
     folder = os.path.dirname(os.path.abspath(out_path))
     if not os.path.isdir(folder):
         raise ParameterError(f"{out_path}: the folder {folder} does not exist; create it or choose another -o")
-    if os.path.lexists(out_path) and (not overwrite or os.path.isdir(out_path)):
-        raise ParameterError(f"{out_path}: exists; pass --force to replace it" if not os.path.isdir(out_path)
-                             else f"{out_path}: is a folder; name the output file")
-    size = capture_bytes(radar, n_chirps)
+    if os.path.isdir(out_path):
+        raise ParameterError(f"{out_path}: is a folder; name the output file")
+    if os.path.lexists(out_path) and not overwrite:
+        raise ParameterError(f"{out_path}: exists; pass --force to replace it")
+    size = n_chirps * radar.n_samples * radar.n_channels * 2  # int16 samples
     free = shutil.disk_usage(folder).free
     if size > free:
         raise ParameterError(
