@@ -97,8 +97,12 @@ def test_fifo_as_external_storage_refused_even_when_allowed(tmp_path):
 
 
 def test_allow_external_reads_a_trusted_link_and_checks_external_sizes(tmp_path):
-    with open_capture(hostile.external_link(tmp_path), allow_external=True) as cap:
+    path = hostile.external_link(tmp_path)
+    with open_capture(path, allow_external=True) as cap:
         np.testing.assert_array_equal(cap.read_counts(0, 4)[0], hostile.noise_counts()[:4])
+    result = CliRunner().invoke(main, ["process", str(path), "--allow-external", "--no-figures",
+                                       "--out", str(tmp_path / "out")])
+    assert result.exit_code == 0 and (tmp_path / "out" / "extlink.features.csv").exists()
     with pytest.raises(CaptureFormatError, match=r"'/Chn1' declares \(128, 256\) int16 \(65,536 bytes\) but its "
                                                  r"external files hold 4,096 bytes of it; the rest would read as "
                                                  r"invented zeros$"):
