@@ -33,6 +33,7 @@ CASES = [  # class, builder, extra process options
     ("(1e9, 2048) declared, contiguous", hostile.huge_declared_contiguous, []),
     ("(1e9, 2048) declared, chunked", hostile.huge_declared_chunked, []),
     ("sparse chunks", hostile.sparse_chunks, []),
+    ("gzip chunk of 72 MB", hostile.compressed_huge_chunk, []),
     ("N=2", hostile.n_two_data, []),
     ("fStop=inf", hostile.fstop_inf, []),
     ("fs=1e15", hostile.fs_absurd, []),

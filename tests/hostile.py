@@ -103,6 +103,12 @@ def sparse_chunks(folder):
     return write(folder / "sparse.h5", data=False, extra=extra)
 
 
+def compressed_huge_chunk(folder):
+    """128 chirps in one gzip chunk declared (140 000, 256): 72 MB decoded from a few KB."""
+    return write(folder / "bomb.h5", data=False, extra=lambda h5: h5.create_dataset(
+        "Chn1", data=noise_counts(), chunks=(140_000, 256), maxshape=(None, 256), compression="gzip"))
+
+
 def _attrs(name, **values):
     return lambda folder: write(folder / f"{name}.h5", attrs=values)
 

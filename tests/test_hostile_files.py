@@ -40,6 +40,8 @@ REFUSED = [
                                     r"invented fill values$"),
     (hostile.sparse_chunks, r"'/Chn1' declares \(128, 256\) int16 \(65,536 bytes\) in 8 chunks but stores 1 "
                             r"\(8,192 bytes\); the missing chunks would read as invented fill values$"),
+    (hostile.compressed_huge_chunk, r"'/Chn1' is compressed in chunks of \(140000, 256\) \(71,680,000 bytes\), each "
+                                    r"decoded whole; at most 67,108,864 bytes a chunk are read$"),
     (hostile.n_two_data, r"n_samples=2 must be a finite number in \[8, 65536\] \(samples per chirp: 8 to 65536\); "
                          r"attribute 'N', or override with --n$"),
     (hostile.fstop_inf, r"f_stop_hz=inf must be a finite number in \[1e\+08, 3e\+11\] Hz \(chirp stop frequency: "

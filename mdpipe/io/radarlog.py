@@ -45,6 +45,7 @@ DEFAULT_CHUNK_CHIRPS = 256
 MAX_TEXT_CHARS = 1 << 20  # /Truth attributes (no larger than the file: attributes are not compressed)
 MAX_JSON_DEPTH = 32
 MAX_LINK_HOPS = 16
+MAX_FILTERED_CHUNK_BYTES = 64 << 20  # a compressed chunk is decoded whole: a small file could ask for 4 GB
 ALLOW_EXTERNAL = "pass --allow-external for a trusted file"
 
 
@@ -181,6 +182,11 @@ def _check_storage(ds, name, path, *, allow_external):
                 f"({stored:,} bytes); the missing chunks would read as invented fill values")
         if not _filtered(ds) and stored < declared:
             raise CaptureFormatError(f"{path}: '/{name}' declares {shape} but stores {stored:,} bytes")
+        chunk_bytes = int(np.prod(ds.chunks, dtype=object)) * ds.dtype.itemsize
+        if _filtered(ds) and chunk_bytes > MAX_FILTERED_CHUNK_BYTES:
+            raise CaptureFormatError(
+                f"{path}: '/{name}' is compressed in chunks of {ds.chunks} ({chunk_bytes:,} bytes), each decoded "
+                f"whole; at most {MAX_FILTERED_CHUNK_BYTES:,} bytes a chunk are read")
         return
     offset = ds.id.get_offset()
     file_size = os.path.getsize(ds.file.filename)  # the file holding it: another one through an allowed link
