@@ -243,3 +243,11 @@ def test_info_text_survives_truth_of_another_form(tmp_path):
     result = CliRunner().invoke(main, ["info", str(path)])
     assert result.exit_code == 0 and result.output.rstrip().endswith(
         "  truth (simulated):\n  (not in the simulator's form: KeyError 'kind'; see info --json)")
+
+
+def test_empty_range_gate_is_refused_before_pass_one(tmp_path):
+    """3.747 m bins (c / 2B, B = 40 MHz): a 1-2 m gate holds none of them."""
+    path = hostile.write(tmp_path / "cap.h5")
+    result = CliRunner().invoke(main, ["process", str(path), "--max-range-m", "2", "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2 and result.stderr.strip() == (
+        f"Error: {path}: the range gate [1, 2] m holds 0 bin(s) of 3.75 m; widen it")

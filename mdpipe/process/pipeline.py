@@ -69,15 +69,16 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         if reader.n_chirps < MIN_CHIRPS:
             raise ParameterError(f"{path}: {reader.n_chirps} chirp(s); the analysis needs at least {MIN_CHIRPS}")
         memory.check_memory(reader, process)
+        n_gate = memory.gate_bin_counts(params, process)[1]  # known before pass 1: an empty gate cannot crash it
+        if n_gate < 3:
+            raise ParameterError(f"{path}: the range gate [{process.min_range_m:g}, {process.max_range_m:g}] m holds "
+                                 f"{n_gate} bin(s) of {params.range_bin_m:.3g} m; widen it")
         stats = ranging.gate_statistics(reader, window=process.range_window, zero_pad=process.zero_pad,
                                         min_range_m=process.min_range_m,
                                         max_range_m=min(process.max_range_m, params.max_range_m),
                                         chunk_chirps=process.chunk_chirps)
         if reader.constant_description():
             raise ParameterError(f"{path}: {reader.constant_description()}; the recording holds no signal")
-        if len(stats.gate_bins) < 3:
-            raise ParameterError(f"{path}: the range gate [{process.min_range_m:g}, {process.max_range_m:g}] m holds "
-                                 f"{len(stats.gate_bins)} bin(s) of {params.range_bin_m:.3g} m; widen it")
         if process.range_m is not None:
             detections = [selection.manual_detection(stats, process.range_m)]
         else:
