@@ -20,11 +20,9 @@ BASE_BYTES = 64 * 2**20  # the interpreter, numpy, h5py and BLAS, before any arr
 
 def gate_bin_counts(params, process):
     """Bins from 0 to the gate's end (K) and inside the gate (B) on the padded grid, as in ``gate_statistics``."""
-    step_m = params.range_bin_m / process.zero_pad
-    last = min(process.zero_pad * params.n_samples // 2, int(np.floor(min(process.max_range_m, params.max_range_m)
-                                                                       / step_m)))
-    first = max(1, int(np.ceil(process.min_range_m / step_m)))
-    return last + 1, max(0, last - first + 1)
+    ranges = ranging.bin_range_m(np.arange(process.zero_pad * params.n_samples // 2 + 1), params, process.zero_pad)
+    ranges = ranges[ranges <= min(process.max_range_m, params.max_range_m)]
+    return len(ranges), int(np.count_nonzero(ranges[1:] >= process.min_range_m))
 
 
 def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_bytes, params, process):
@@ -100,8 +98,6 @@ def check_memory(reader, process):
         smaller = plan_bytes(**layout, process=replace(process, zero_pad=1))["peak"]
         hints.append(f"--zero-pad 1 ({smaller / GIB:.2f} GB)")
     hints.append(f"a shorter --max-range-m ({k} range bins up to {min(process.max_range_m, reader.params.max_range_m):g} m)")
-    if process.range_bins == "all":
-        hints.append("--range-bins in-use")
     largest = max(("pass 1", "pass 2", "analysis"), key=plan.get)
     raise ParameterError(
         f"{reader.path}: processing would need about {plan['peak'] / GIB:.2f} GB ({largest} {plan[largest] / GIB:.2f} GB "
