@@ -17,7 +17,7 @@ def file_mode():
     return 0o666 & ~mask
 
 
-def create_temporary(path, *, suffix=""):
+def create_temporary(path):
     """Create a new empty file beside ``path``; returns ``(fd, temporary_path)``.
 
     Raises
@@ -26,7 +26,7 @@ def create_temporary(path, *, suffix=""):
         When the folder of ``path`` does not exist.
     """
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
     try:
         os.fchmod(fd, file_mode())
     except BaseException:

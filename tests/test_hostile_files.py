@@ -32,7 +32,8 @@ REFUSED = [
                                      rf"files \({ALLOW}\)$"),
     (hostile.external_raw_passwd, rf"'/Chn1' keeps its samples outside the file, in /etc/passwd \(external raw "
                                   rf"storage\); refused \({ALLOW}\)$"),
-    (hostile.external_raw_short, r"'/Chn1' keeps its samples outside the file, in .*short\.raw"),
+    (hostile.external_raw_short, rf"'/Chn1' keeps its samples outside the file, in .*short\.raw \(external raw "
+                                 rf"storage\); refused \({ALLOW}\)$"),
     (hostile.huge_declared_contiguous, r"'/Chn1' declares \(1000000000, 2048\) int16 \(4,096,000,000,000 bytes\) but "
                                        r"the file stores 0 bytes of it; the file is truncated or forged$"),
     (hostile.huge_declared_chunked, r"'/Chn1' declares \(1000000000, 2048\) int16 \(4,096,000,000,000 bytes\) in "
