@@ -113,7 +113,6 @@ def _attrs(name, **values):
     return lambda folder: write(folder / f"{name}.h5", attrs=values)
 
 
-n_two = _attrs("n2", N=2)
 fstop_inf = _attrs("fstopinf", fStop=np.inf)
 fs_absurd = _attrs("fs1e15", fs=1e15)
 fusca_absurd = _attrs("fusca", FuSca=1e300)
