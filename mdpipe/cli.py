@@ -1,6 +1,8 @@
 """The ``mdpipe`` command line: thin click commands that parse, call the library and write."""
 
+import contextlib
 import json
+import signal
 import sys
 from pathlib import Path
 
@@ -48,6 +50,19 @@ class Group(click.Group):
             raise InputError(str(exc)) from None
 
 
+@contextlib.contextmanager
+def terminate_as_exit():
+    """Inside, SIGTERM unwinds like Ctrl-C (``SystemExit(143)``), so temporary files are removed on the way out."""
+    def handler(signum, frame):
+        raise SystemExit(128 + signum)
+
+    previous = signal.signal(signal.SIGTERM, handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def attribute_overrides(func):
     """Options that supply or replace a capture's chirp attributes (``--tp 64e-6`` ...)."""
     for name, (_field, meaning, _example) in reversed(ATTRIBUTES.items()):
@@ -57,14 +72,19 @@ def attribute_overrides(func):
     frame_counter = click.option(
         "--frame-counter", type=click.Choice(["auto", "yes", "no"]), default="auto", show_default=True,
         help="Whether sample 0 of every chirp is a frame counter to drop.")
-    return frame_counter(func)
+    allow_external = click.option(
+        "--allow-external", is_flag=True,
+        help="Trusted files only: read samples that an HDF5 external link, virtual dataset or external raw "
+             "storage keeps in other files (refused by default).")
+    return allow_external(frame_counter(func))
 
 
 def reader_options(options):
-    """``frame_counter`` and ``overrides`` for :func:`mdpipe.io.open_capture` from the :func:`attribute_overrides` options."""
+    """``frame_counter``, ``overrides`` and ``allow_external`` for :func:`mdpipe.io.open_capture` from the
+    :func:`attribute_overrides` options."""
     overrides = {name: options[name] for name in ATTRIBUTES if options[name] is not None}
     return {"frame_counter": {"auto": "auto", "yes": True, "no": False}[options["frame_counter"]],
-            "overrides": overrides}
+            "overrides": overrides, "allow_external": options["allow_external"]}
 
 
 def open_with_overrides(path, options):
@@ -87,10 +107,17 @@ def main():
 @click.option("--chirps", type=click.IntRange(min=1), help="Override radar.n_chirps.")
 @click.option("--channels", type=click.IntRange(1, 16), help="Override radar.n_channels.")
 @click.option("--snr-db", type=float, help="Override noise: per-sample SNR of the moving targets, dB.")
-def simulate(config_path, out_path, seed, chirps, channels, snr_db):
-    """Simulate the scene in CONFIG and write a Radarlog capture with its expected answer."""
+@click.option("--force", is_flag=True, help="Replace an existing output file (never the config itself).")
+@click.option("--max-memory-gb", type=click.FloatRange(min=0, min_open=True), default=2.0, show_default=True,
+              help="Refuse a scene whose planned memory exceeds this (GiB).")
+def simulate(config_path, out_path, seed, chirps, channels, snr_db, force, max_memory_gb):
+    """Simulate the scene in CONFIG and write a Radarlog capture with its expected answer.
+
+    The capture is written under a hidden temporary name beside the output and renamed when complete;
+    on an error, Ctrl-C or SIGTERM nothing is left behind.
+    """
     from mdpipe.simulate.plausibility import scene_warnings
-    from mdpipe.simulate.run import simulate_to_file
+    from mdpipe.simulate.run import check_output, simulate_to_file
     from mdpipe.simulate.scene import load_scene_mapping, scene_from_mapping, scene_to_yaml
 
     data = load_scene_mapping(config_path)
@@ -108,14 +135,25 @@ def simulate(config_path, out_path, seed, chirps, channels, snr_db):
     for warning in scene_warnings(scene):
         click.echo(f"warning: {warning}", err=True)
     out_path = out_path or Path(config_path.stem + ".h5")
+    if out_path.exists() and config_path.exists() and out_path.samefile(config_path):
+        raise InputError(f"{out_path}: is the config file itself; choose another -o")
     radar = scene.radar
     total = radar.n_chirps * radar.n_samples * radar.n_channels
     yaml_text = scene_to_yaml(data)
-    if total >= PROGRESS_MIN_SAMPLES:
-        with click.progressbar(length=radar.n_chirps, label=f"simulating {out_path.name}", file=sys.stderr) as bar:
-            truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text, progress=bar.update)
-    else:
-        truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text)
+    options = dict(overwrite=force, max_memory_gb=max_memory_gb)
+    check_output(scene, out_path, **options)  # before the progress bar shows
+    try:
+        with terminate_as_exit():
+            if total >= PROGRESS_MIN_SAMPLES:
+                with click.progressbar(length=radar.n_chirps, label=f"simulating {out_path.name}",
+                                       file=sys.stderr) as bar:
+                    truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text, progress=bar.update, **options)
+            else:
+                truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text, **options)
+    except FileExistsError:
+        raise InputError(f"{out_path}: appeared while simulating; pass --force to replace it") from None
+    except OSError as exc:
+        raise InputError(f"{out_path}: cannot be written ({exc.strerror or exc})") from None
     sim = truth["simulation"]
     click.echo(f"wrote {out_path}: {radar.n_chirps} chirps x {radar.n_samples} samples x {radar.n_channels} RX, "
                f"noise sigma {sim['noise_sigma_v']:.3g} V, {sim['clipped_samples']} samples clipped")
@@ -157,8 +195,12 @@ def info(capture, as_json, **options):
             "duration_s": p.duration_s(n), "n_chirps": n, "n_channels": p.n_channels, "n_samples": p.n_samples,
         }
         if as_json:
-            click.echo(json.dumps({"file": str(capture), "layout": cap.layout.describe(), "params": p.__dict__,
-                                   "derived": derived, "truth": cap.truth and cap.truth["expected"]}))
+            from mdpipe.report.tables import finite_json
+
+            click.echo(json.dumps(finite_json({"file": str(capture), "layout": cap.layout.describe(),
+                                               "params": p.__dict__, "derived": derived,
+                                               "truth": cap.truth and cap.truth["expected"],
+                                               "warnings": cap.warnings}), allow_nan=False))
             return
         click.echo(f"{capture}")
         click.echo(f"  layout: {cap.layout.describe()}")
@@ -169,9 +211,15 @@ def info(capture, as_json, **options):
         click.echo(f"  range bin {p.range_bin_m:.4g} m, max range {p.max_range_m:.5g} m")
         click.echo(f"  Doppler span {p.doppler_span_hz:.6g} Hz (+-{p.doppler_span_hz / 2:.6g} Hz) = "
                    f"{p.velocity_span_mps:.4g} m/s at lambda {p.wavelength_m * 1e3:.4g} mm")
+        for warning in cap.warnings:
+            click.echo(f"  note: {warning}")
         if cap.truth:
+            try:
+                lines = _format_truth(cap.truth["expected"])
+            except (KeyError, TypeError, ValueError, IndexError) as exc:
+                lines = [f"  (not in the simulator's form: {type(exc).__name__} {exc}; see info --json)"]
             click.echo("  truth (simulated):")
-            for line in _format_truth(cap.truth["expected"]):
+            for line in lines:
                 click.echo(line)
 
 
@@ -195,6 +243,8 @@ def info(capture, as_json, **options):
 @click.option("--zero-pad", type=click.IntRange(1, 16), default=ProcessParams.zero_pad, show_default=True)
 @click.option("--stft-window-s", type=click.FloatRange(min=0, min_open=True), help="Spectrogram window [from physics].")
 @click.option("--stft-hop-s", type=click.FloatRange(min=0, min_open=True), help="Spectrogram hop [window / 4].")
+@click.option("--max-memory-gb", type=click.FloatRange(min=0, min_open=True), default=ProcessParams.max_memory_gb,
+              show_default=True, help="Refuse a capture whose planned memory exceeds this (GiB).")
 @attribute_overrides
 def process(captures, out_dir, as_json, no_figures, **options):
     """Detect targets in each CAPTURE, measure their micro-Doppler features, call drone / bird / none.

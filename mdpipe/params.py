@@ -19,6 +19,21 @@ def require_positive(**values):
             raise ParameterError(f"{name}={value!r} must be a finite number > 0")
 
 
+# field -> (lowest, highest, unit, meaning): the values a radar engineer would accept, VHF to 300 GHz.
+# N >= 8 keeps a range FFT meaningful; 256 RX covers cascaded MIMO front ends (Radarlog: 16).
+RADAR_LIMITS = {
+    "f_start_hz": (1e8, 3e11, "Hz", "chirp start frequency: 100 MHz to 300 GHz"),
+    "f_stop_hz": (1e8, 3e11, "Hz", "chirp stop frequency: 100 MHz to 300 GHz"),
+    "ramp_up_s": (1e-7, 1.0, "s", "up-ramp duration: 100 ns to 1 s"),
+    "chirp_period_s": (1e-7, 1.0, "s", "chirp repetition interval: 100 ns to 1 s"),
+    "ramp_down_s": (0.0, 1.0, "s", "down-ramp duration: 0 to 1 s"),
+    "sample_rate_hz": (1e3, 1e9, "Hz", "ADC sample rate: 1 kHz to 1 GHz"),
+    "n_samples": (8, 65536, "", "samples per chirp: 8 to 65536"),
+    "n_channels": (1, 256, "", "RX channels: 1 to 256"),
+    "full_scale_v_per_lsb": (1e-12, 1e3, "V/LSB", "volts per ADC count: 1 pV to 1 kV"),
+}
+
+
 @dataclass(frozen=True)
 class RadarParams:
     """FMCW chirp parameters of a capture (the Radarlog attributes, in SI units).
@@ -43,6 +58,9 @@ class RadarParams:
         Volts per ADC count (``FuSca``).
     rx_positions_m : tuple of float
         RX positions along the array axis, one per channel; empty when unknown.
+
+    Every number must be finite and inside its range in ``RADAR_LIMITS``; the samples must fit in the
+    up-ramp (``N / fs <= TRampUp``) and the up-ramp in the chirp period.
     """
 
     f_start_hz: float
@@ -57,23 +75,19 @@ class RadarParams:
     rx_positions_m: tuple = field(default=())
 
     def __post_init__(self):
-        require_positive(
-            f_start_hz=self.f_start_hz,
-            ramp_up_s=self.ramp_up_s,
-            chirp_period_s=self.chirp_period_s,
-            sample_rate_hz=self.sample_rate_hz,
-            full_scale_v_per_lsb=self.full_scale_v_per_lsb,
-        )
+        for name, (low, high, unit, meaning) in RADAR_LIMITS.items():
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float, np.integer, np.floating)) and np.isfinite(value)
+                    and low <= value <= high):
+                raise ParameterError(f"{name}={value!r} must be a finite number in [{low:g}, {high:g}]"
+                                     f"{' ' + unit if unit else ''} ({meaning})")
+        for name in ("n_samples", "n_channels"):
+            if int(getattr(self, name)) != getattr(self, name):
+                raise ParameterError(f"{name}={getattr(self, name)!r} must be an integer")
         if not self.f_stop_hz > self.f_start_hz:
             raise ParameterError(
                 f"f_stop_hz={self.f_stop_hz!r} must exceed f_start_hz={self.f_start_hz!r} (an up-chirp)"
             )
-        if int(self.n_samples) != self.n_samples or self.n_samples < 2:
-            raise ParameterError(f"n_samples={self.n_samples!r} must be an integer >= 2")
-        if int(self.n_channels) != self.n_channels or self.n_channels < 1:
-            raise ParameterError(f"n_channels={self.n_channels!r} must be an integer >= 1")
-        if self.ramp_down_s < 0:
-            raise ParameterError(f"ramp_down_s={self.ramp_down_s!r} must be >= 0")
         if self.n_samples / self.sample_rate_hz > self.ramp_up_s * (1 + 1e-9):
             raise ParameterError(
                 f"n_samples / sample_rate_hz = {self.n_samples / self.sample_rate_hz:.6g} s exceeds "
@@ -84,6 +98,8 @@ class RadarParams:
                 f"ramp_up_s={self.ramp_up_s!r} exceeds chirp_period_s={self.chirp_period_s!r}"
             )
         positions = tuple(float(p) for p in self.rx_positions_m)
+        if not all(np.isfinite(positions)):
+            raise ParameterError(f"rx_positions_m={positions!r} must be finite")
         if positions and len(positions) != self.n_channels:
             raise ParameterError(
                 f"rx_positions_m has {len(positions)} entries for n_channels={self.n_channels}"
@@ -187,6 +203,8 @@ class ProcessParams:
         ``all`` takes the full FFT and picks them (for comparison).
     chunk_chirps : int
         Chirps read per chunk.
+    max_memory_gb : float
+        A capture whose planned memory (:mod:`mdpipe.process.memory`) exceeds this many GiB is refused.
     """
 
     min_range_m: float = 1.0
@@ -206,9 +224,11 @@ class ProcessParams:
     dtype: str = "float32"
     range_bins: str = "in-use"
     chunk_chirps: int = 256
+    max_memory_gb: float = 2.0
 
     def __post_init__(self):
-        require_positive(max_range_m=self.max_range_m, chunk_chirps=self.chunk_chirps)
+        require_positive(max_range_m=self.max_range_m, chunk_chirps=self.chunk_chirps,
+                         max_memory_gb=self.max_memory_gb)
         if not 0 <= self.min_range_m < self.max_range_m:
             raise ParameterError(f"min_range_m={self.min_range_m!r} must lie in [0, max_range_m={self.max_range_m!r})")
         if self.range_m is not None:

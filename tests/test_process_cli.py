@@ -70,7 +70,7 @@ def test_parameters_reach_the_output(tmp_path):
     (lambda p: write_capture(p, np.zeros((100, 200), np.int16)), r"attribute N=256 but chirps hold 200 samples"),
     (lambda p: write_capture(p, np.zeros((0, 256), np.int16)), r"the capture holds no chirps"),
     (lambda p: write_capture(p, np.ones((1, 256), np.int16)), r"1 chirp\(s\); the analysis needs at least 64"),
-    (lambda p: write_capture(p, np.zeros((100, 256), np.int16)), r"every sample is zero; the recording holds no signal"),
+    (lambda p: write_capture(p, np.zeros((100, 256), np.int16)), r"every sample read is 0 \(constant data, such as a fill value\); the recording holds no signal$"),
     (lambda p: write_capture(p, np.full((100, 256), np.nan, np.float32)), r"hold NaN or Inf samples"),
 ])
 def test_bad_input_is_one_line_and_exit_2(tmp_path, make, message):

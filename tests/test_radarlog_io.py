@@ -139,7 +139,8 @@ def test_overrides_supply_missing_attribute(tmp_path, samples):
              "Chn3": np.zeros((4, 256), np.int16)}, r"dataset '/Chn2' has shape \(5, 256\)"),
     (ATTRS, {"Data": np.zeros((4, 256), np.int16)}, r"dataset '/Data' has shape \(4, 256\); expected \(n_chirps, NrChn, N\)"),
     (ATTRS, {f"Chn{c}": np.zeros((4, 256), np.int32) for c in (1, 2, 3)}, r"samples are int32; Radarlog samples must be int16"),
-    ({**ATTRS, "Tp": -1.0}, "chn", r"chirp_period_s=-1.0 must be a finite number > 0"),
+    ({**ATTRS, "Tp": -1.0}, "chn", r"chirp_period_s=-1.0 must be a finite number in \[1e-07, 1\] s \(chirp repetition interval: 100 ns to 1 s\); "
+                                   r"attribute 'Tp', or override with --tp$"),
     ({**ATTRS, "fStop": 75e9}, "chn", r"f_stop_hz=75000000000.0 must exceed f_start_hz=76000000000.0"),
     ({**ATTRS, "fs": 1e6}, "chn", r"n_samples / sample_rate_hz = 0.000256 s exceeds ramp_up_s=5.12e-05"),
     ({**ATTRS, "Tp": np.array([1.0, 2.0])}, "chn", r"attribute 'Tp' must be one number"),

@@ -102,9 +102,9 @@ def test_radar_params_derived_quantities():
     assert p.wavelength_m == pytest.approx(299792458 / 76.02e9)
     assert p.velocity_span_mps == pytest.approx(15625.0 * p.wavelength_m / 2)
     assert p.max_range_m == pytest.approx(p.range_bin_m * 1024)
-    with pytest.raises(ParameterError, match=r"^n_samples=1 must be an integer >= 2$"):
+    with pytest.raises(ParameterError, match=r"^n_samples=2 must be a finite number in \[8, 65536\] \(samples per chirp"):
         RadarParams(f_start_hz=76e9, f_stop_hz=76.04e9, ramp_up_s=51.2e-6, chirp_period_s=64e-6,
-                    sample_rate_hz=40e6, n_samples=1)
+                    sample_rate_hz=40e6, n_samples=2)
     with pytest.raises(ParameterError, match=r"^rx_positions_m has 2 entries for n_channels=1$"):
         RadarParams(f_start_hz=76e9, f_stop_hz=76.04e9, ramp_up_s=51.2e-6, chirp_period_s=64e-6,
                     sample_rate_hz=40e6, n_samples=8, rx_positions_m=(0.0, 1.0))

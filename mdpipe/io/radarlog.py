@@ -15,13 +15,17 @@ samples).
 
 import json
 import os
+import re
+import stat
+import threading
 from dataclasses import dataclass
 
 import h5py
 import numpy as np
 
 from mdpipe.errors import CaptureFormatError, ParameterError
-from mdpipe.params import RadarParams
+from mdpipe.outputs import publish
+from mdpipe.params import RADAR_LIMITS, RadarParams
 
 # attribute name -> (RadarParams field, meaning with unit, example CLI override)
 ATTRIBUTES = {
@@ -38,6 +42,11 @@ SAMPLE_DTYPES = (np.int16, np.float32, np.float64)
 INT16_FULL_SCALE = 32767  # int16 samples span -32768 .. 32767 counts
 DETECTION_CHIRPS = 256
 DEFAULT_CHUNK_CHIRPS = 256
+MAX_TEXT_CHARS = 1 << 20  # /Truth attributes (no larger than the file: attributes are not compressed)
+MAX_JSON_DEPTH = 32
+MAX_LINK_HOPS = 16
+MAX_FILTERED_CHUNK_BYTES = 64 << 20  # a compressed chunk is decoded whole: a small file could ask for 4 GB
+ALLOW_EXTERNAL = "pass --allow-external for a trusted file"
 
 
 @dataclass(frozen=True)
@@ -83,27 +92,185 @@ def _read_attributes(attrs, path, overrides):
     return prefix, values
 
 
-def _sample_datasets(h5, path):
-    if "Data" in h5 and isinstance(h5["Data"], h5py.Dataset):
-        data = h5["Data"]
-        if data.ndim != 3:
+def check_regular_file(path):
+    """Raise :class:`CaptureFormatError` unless ``path`` is an existing regular file (a FIFO would hang the open)."""
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        raise CaptureFormatError(f"{path}: no such file") from None
+    except OSError as exc:
+        raise CaptureFormatError(f"{path}: cannot be read ({exc.strerror})") from None
+    if not stat.S_ISREG(mode):
+        kind = {stat.S_IFIFO: "a FIFO", stat.S_IFCHR: "a character device", stat.S_IFBLK: "a block device",
+                stat.S_IFDIR: "a folder", stat.S_IFSOCK: "a socket"}.get(stat.S_IFMT(mode), "not a regular file")
+        raise CaptureFormatError(f"{path}: is {kind}; captures are read from regular files only")
+
+
+def _locate(h5, name, path, *, allow_external, shown=None, hops=0):
+    """The object at absolute ``name``, its links followed without leaving the file.
+
+    External links (anywhere on the way) are refused unless ``allow_external``; a soft link that
+    dangles or loops is an error. Nothing outside the file is opened before it is allowed.
+    """
+    shown = shown or name
+    parts = [part for part in name.split("/") if part]
+    obj = h5["/"]
+    for index, part in enumerate(parts):
+        where = "/" + "/".join(parts[:index + 1])
+        if not isinstance(obj, h5py.Group):
+            raise CaptureFormatError(f"{path}: '{shown}' leads through '{obj.name}', which is not a group")
+        group = obj
+        link = group.get(part, getlink=True)
+        if link is None:
+            raise CaptureFormatError(f"{path}: '{shown}' leads to '{where}', which does not exist (a dangling link)")
+        if isinstance(link, h5py.ExternalLink):
+            if not allow_external:
+                how = "is" if where == shown else f"is a soft link that leaves the file through '{where}',"
+                raise CaptureFormatError(f"{path}: '{shown}' {how} an external link to {link.filename}:{link.path}; "
+                                         f"refused: it reads another file ({ALLOW_EXTERNAL})")
+            obj = group[part]
+        elif isinstance(link, h5py.SoftLink):
+            if hops >= MAX_LINK_HOPS:
+                raise CaptureFormatError(f"{path}: '{shown}' is a chain of more than {MAX_LINK_HOPS} soft links")
+            target = link.path if link.path.startswith("/") else f"{group.name.rstrip('/')}/{link.path}"
+            obj = _locate(h5, target, path, allow_external=allow_external, shown=shown, hops=hops + 1)
+        else:
+            obj = group[part]
+    return obj
+
+
+def _filtered(ds):
+    """True when ``ds`` is stored through filters (compression): its chunks are decoded whole."""
+    return ds.chunks is not None and ds.id.get_create_plist().get_nfilters() > 0
+
+
+def _check_storage(ds, name, path, *, allow_external):
+    """Refuse data stored outside the file, and a declared shape the stored bytes cannot hold.
+
+    A virtual dataset or external raw storage reads other files (a missing source reads as fill
+    values, a FIFO hangs); missing chunks or a short contiguous block would read as invented fill.
+    """
+    declared = int(np.prod(ds.shape, dtype=object)) * ds.dtype.itemsize
+    shape = f"{ds.shape} {ds.dtype} ({declared:,} bytes)"
+    if ds.is_virtual:
+        if not allow_external:
+            sources = sorted({source.file_name for source in ds.virtual_sources()})
+            raise CaptureFormatError(f"{path}: '/{name}' is a virtual dataset reading {', '.join(sources)}; "
+                                     f"refused: it reads other files ({ALLOW_EXTERNAL})")
+        return
+    if ds.external:
+        files = [os.fsdecode(entry[0]) for entry in ds.external]
+        if not allow_external:
+            raise CaptureFormatError(f"{path}: '/{name}' keeps its samples outside the file, in "
+                                     f"{', '.join(files)} (external raw storage); refused ({ALLOW_EXTERNAL})")
+        available = 0
+        for file_name, offset, size in ds.external:  # relative names are found from the working folder, as HDF5 does
+            external_path = os.path.abspath(os.fsdecode(file_name))
+            check_regular_file(external_path)
+            available += max(0, min(int(size), os.path.getsize(external_path) - int(offset)))
+        if available < declared:
+            raise CaptureFormatError(f"{path}: '/{name}' declares {shape} but its external files hold {available:,} "
+                                     "bytes of it; the rest would read as invented zeros")
+        return
+    stored = ds.id.get_storage_size()
+    if ds.chunks is not None:
+        expected = int(np.prod([-(-n // c) for n, c in zip(ds.shape, ds.chunks)], dtype=object))
+        allocated = ds.id.get_num_chunks()
+        if allocated < expected:
             raise CaptureFormatError(
-                f"{path}: dataset '/Data' has shape {data.shape}; expected (n_chirps, NrChn, N)")
-        return "3-D", [data]
-    names = sorted((k for k in h5 if k.startswith("Chn") and k[3:].isdigit()), key=lambda k: int(k[3:]))
-    if not names:
+                f"{path}: '/{name}' declares {shape} in {expected:,} chunks but stores {allocated:,} "
+                f"({stored:,} bytes); the missing chunks would read as invented fill values")
+        if not _filtered(ds) and stored < declared:
+            raise CaptureFormatError(f"{path}: '/{name}' declares {shape} but stores {stored:,} bytes")
+        chunk_bytes = int(np.prod(ds.chunks, dtype=object)) * ds.dtype.itemsize
+        if _filtered(ds) and chunk_bytes > MAX_FILTERED_CHUNK_BYTES:
+            raise CaptureFormatError(
+                f"{path}: '/{name}' is compressed in chunks of {ds.chunks} ({chunk_bytes:,} bytes), each decoded "
+                f"whole; at most {MAX_FILTERED_CHUNK_BYTES:,} bytes a chunk are read")
+        return
+    offset = ds.id.get_offset()
+    file_size = os.path.getsize(ds.file.filename)  # the file holding it: another one through an allowed link
+    if stored < declared or (offset is not None and offset + declared > file_size):
         raise CaptureFormatError(
-            f"{path}: no sample datasets (expected /Chn1 ... /Chn{{NrChn}} or one /Data); is this a Radarlog capture?")
-    expected = [f"Chn{i + 1}" for i in range(len(names))]
-    if names != expected:
-        raise CaptureFormatError(f"{path}: channel datasets {names} are not numbered Chn1..Chn{len(names)}")
-    datasets = [h5[n] for n in names]
+            f"{path}: '/{name}' declares {shape} but the file stores {min(stored, max(file_size - (offset or 0), 0)):,} "
+            f"bytes of it; the file is truncated or forged")
+
+
+def _sample_datasets(h5, path, *, allow_external):
+    if h5.get("Data", getlink=True) is not None:
+        data = _locate(h5, "/Data", path, allow_external=allow_external)
+        if not isinstance(data, h5py.Dataset):
+            raise CaptureFormatError(f"{path}: '/Data' is a group; expected a dataset (n_chirps, NrChn, N)")
+        if data.ndim != 3:
+            raise CaptureFormatError(f"{path}: dataset '/Data' has shape {data.shape}; expected (n_chirps, NrChn, N)")
+        datasets, names = [data], ["Data"]
+    else:
+        names = sorted((k for k in h5 if k.startswith("Chn") and k[3:].isdigit()), key=lambda k: int(k[3:]))
+        if not names:
+            raise CaptureFormatError(f"{path}: no sample datasets (expected /Chn1 ... /Chn{{NrChn}} or one /Data); "
+                                     "is this a Radarlog capture?")
+        expected = [f"Chn{i + 1}" for i in range(len(names))]
+        if names != expected:
+            raise CaptureFormatError(f"{path}: channel datasets {names[:8]} are not numbered Chn1..Chn{len(names)}")
+        if len(names) > RADAR_LIMITS["n_channels"][1]:
+            raise CaptureFormatError(f"{path}: {len(names)} channel datasets; at most "
+                                     f"{RADAR_LIMITS['n_channels'][1]} RX channels are read")
+        datasets = [_locate(h5, f"/{n}", path, allow_external=allow_external) for n in names]
+        for name, ds in zip(names, datasets):
+            if not isinstance(ds, h5py.Dataset):
+                raise CaptureFormatError(f"{path}: '/{name}' is a group; every /ChnK must be a dataset (n_chirps, N)")
+            if ds.ndim != 2 or ds.shape != datasets[0].shape:
+                raise CaptureFormatError(
+                    f"{path}: dataset '/{name}' has shape {ds.shape}; every /ChnK must be (n_chirps, N) "
+                    f"like /Chn1 {datasets[0].shape}")
     for name, ds in zip(names, datasets):
-        if ds.ndim != 2 or ds.shape != datasets[0].shape:
+        if ds.dtype not in SAMPLE_DTYPES or ds.dtype != datasets[0].dtype:
             raise CaptureFormatError(
-                f"{path}: dataset '/{name}' has shape {ds.shape}; every /ChnK must be (n_chirps, N) "
-                f"like /Chn1 {datasets[0].shape}")
-    return "per-channel", datasets
+                f"{path}: samples are {ds.dtype}; Radarlog samples must be int16 (or float32/float64), "
+                f"the same in every channel ('/{name}')")
+        _check_storage(ds, name, path, allow_external=allow_external)
+    return ("3-D" if names == ["Data"] else "per-channel"), datasets
+
+
+def _name_attribute(exc):
+    """A :class:`RadarParams` error with the file attribute and the CLI override of the field it names."""
+    message = str(exc)
+    for name, (field_name, _meaning, example) in ATTRIBUTES.items():
+        if message.startswith(field_name + "="):
+            return f"{message}; attribute {name!r}, or override with {example.split()[0]}"
+    for name, (field_name, _default) in OPTIONAL_ATTRIBUTES.items():
+        if message.startswith(field_name + "="):
+            return f"{message}; attribute {name!r}"
+    return message
+
+
+def _text_attribute(attrs, name):
+    """A string attribute of at most ``MAX_TEXT_CHARS``, or None when absent."""
+    if name not in attrs:
+        return None
+    value = attrs[name]
+    if isinstance(value, bytes):
+        value = value.decode("utf-8")
+    if not isinstance(value, str):
+        raise TypeError(f"attribute {name} is not a string")
+    if len(value) > MAX_TEXT_CHARS:
+        raise ValueError(f"attribute {name} holds {len(value):,} characters (more than {MAX_TEXT_CHARS:,})")
+    return value
+
+
+def parse_json_bounded(text, *, max_depth=MAX_JSON_DEPTH):
+    """``json.loads`` of trusted shape only: at most ``max_depth`` levels of nesting, no NaN or Infinity."""
+    codes = np.frombuffer(re.sub(r'"(?:[^"\\]|\\.)*"', '""', text).encode(), dtype=np.uint8)  # strings out
+    steps = np.isin(codes, list(b"[{")).astype(np.int64) - np.isin(codes, list(b"]}"))
+    if len(steps) and np.cumsum(steps).max() > max_depth:
+        raise ValueError(f"JSON nested deeper than {max_depth} levels")
+
+    def refuse(constant):
+        raise ValueError(f"JSON holds {constant}")
+    try:
+        return json.loads(text, parse_constant=refuse)
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"invalid JSON ({exc})") from None
 
 
 def _is_frame_counter(column):
@@ -129,10 +296,20 @@ class RadarlogReader:
     layout : Layout
     truth : dict or None
         ``{"scene_yaml": str, "expected": dict}`` for simulated files.
+    warnings : list of str
+        Non-essential content that was malformed and ignored (``/RxPosn``, ``/Truth``), one line each.
+    read_chunk_bytes : int
+        Bytes HDF5 decompresses at once to read a row (the largest chunk of a filtered dataset; 0 when
+        the samples are stored uncompressed and read straight into the caller's buffer).
     """
 
-    def __init__(self, path, *, frame_counter="auto", overrides=None):
+    def __init__(self, path, *, frame_counter="auto", overrides=None, allow_external=False):
         self.path = os.fspath(path)
+        self.warnings = []
+        self._first_chirp = None  # of every channel, to tell constant data (a fill value) from a signal
+        self._varies = False
+        self._lock = threading.Lock()
+        check_regular_file(self.path)
         try:
             self._h5 = h5py.File(self.path, "r")
         except FileNotFoundError:
@@ -145,15 +322,19 @@ class RadarlogReader:
                 f"{self.path}: not a readable HDF5 file ({str(exc).split('(')[0].strip()}); "
                 "check that the file is complete and is a Radarlog capture") from None
         try:
-            self._open(frame_counter, dict(overrides or {}))
+            self._open(frame_counter, dict(overrides or {}), allow_external)
+        except (KeyError, OSError, RuntimeError, TypeError) as exc:  # h5py's errors for a damaged structure
+            self._h5.close()
+            raise CaptureFormatError(f"{self.path}: the HDF5 structure is damaged ({str(exc).split('(')[0].strip()}); "
+                                     "the file is not a readable Radarlog capture") from None
         except BaseException:
             self._h5.close()
             raise
 
-    def _open(self, frame_counter, overrides):
+    def _open(self, frame_counter, overrides, allow_external):
         h5, path = self._h5, self.path
         prefix, values = _read_attributes(h5.attrs, path, overrides)
-        kind, datasets = _sample_datasets(h5, path)
+        kind, datasets = _sample_datasets(h5, path, allow_external=allow_external)
         self._datasets = datasets
         if kind == "3-D":
             n_chirps, n_channels, row_length = datasets[0].shape
@@ -161,9 +342,8 @@ class RadarlogReader:
             (n_chirps, row_length), n_channels = datasets[0].shape, len(datasets)
         self._n_channels = n_channels
         dtype = datasets[0].dtype
-        if dtype not in SAMPLE_DTYPES:
-            raise CaptureFormatError(
-                f"{path}: samples are {dtype}; Radarlog samples must be int16 (or float32/float64)")
+        self.read_chunk_bytes = max(
+            (int(np.prod(ds.chunks)) * dtype.itemsize for ds in datasets if _filtered(ds)), default=0)
         if values["n_samples"] != row_length:
             raise CaptureFormatError(
                 f"{path}: attribute N={values['n_samples']} but chirps hold {row_length} samples; "
@@ -174,28 +354,72 @@ class RadarlogReader:
                 f"fix NrChn or pass --nrchn {n_channels}")
         if n_chirps < 1:
             raise CaptureFormatError(f"{path}: the capture holds no chirps")
+        try:  # the numbers are checked before any sample is read
+            RadarParams(**values)
+        except ParameterError as exc:
+            raise CaptureFormatError(f"{path}: {_name_attribute(exc)}") from None
         if frame_counter == "auto":
             first = self._raw(0, min(n_chirps, DETECTION_CHIRPS), [0])[0, :, 0]
             frame_counter = _is_frame_counter(first)
         self._skip = 1 if frame_counter else 0
         values["n_samples"] -= self._skip
-        positions = ()
-        if "RxPosn" in h5:
-            positions = tuple(np.asarray(h5["RxPosn"][()], dtype=np.float64).ravel())
-            if len(positions) != n_channels:
-                raise CaptureFormatError(
-                    f"{path}: /RxPosn lists {len(positions)} positions for {n_channels} channels")
         try:
-            self.params = RadarParams(**values, rx_positions_m=positions)
+            self.params = RadarParams(**values, rx_positions_m=self._rx_positions(n_channels, allow_external))
         except ParameterError as exc:
-            raise CaptureFormatError(f"{path}: {exc}") from None
+            raise CaptureFormatError(f"{path}: {_name_attribute(exc)}") from None
         self.n_chirps = int(n_chirps)
         self.layout = Layout(prefix, kind, str(dtype), bool(frame_counter))
-        self.truth = None
-        if "Truth" in h5:
-            attrs = h5["Truth"].attrs
-            self.truth = {"scene_yaml": str(attrs.get("scene_yaml", "")),
-                          "expected": json.loads(attrs.get("expected_json", "{}"))}
+        self.truth = self._truth(allow_external)
+
+    def _optional(self, name, allow_external, kind):
+        """The object ``/name`` if present, safe to read and of ``kind``; otherwise None and a warning."""
+        if self._h5.get(name, getlink=True) is None:
+            return None
+        try:
+            obj = _locate(self._h5, f"/{name}", self.path, allow_external=allow_external)
+            if isinstance(obj, h5py.Dataset):
+                _check_storage(obj, name, self.path, allow_external=allow_external)
+        except CaptureFormatError as exc:
+            self.warnings.append(f"ignored /{name}: {str(exc).removeprefix(self.path + ': ')}")
+            return None
+        if not isinstance(obj, kind):
+            self.warnings.append(f"ignored /{name}: it is a {type(obj).__name__.lower()}, not a {kind.__name__.lower()}")
+            return None
+        return obj
+
+    def _rx_positions(self, n_channels, allow_external):
+        """``/RxPosn`` as a tuple of NrChn finite positions (m), or () with a warning when it is anything else."""
+        ds = self._optional("RxPosn", allow_external, h5py.Dataset)
+        if ds is None:
+            return ()
+        problem = None
+        if ds.dtype.kind not in "iuf":
+            problem = f"it holds {ds.dtype} values, not positions in m"
+        elif ds.size != n_channels:
+            problem = f"it lists {ds.size} positions for {n_channels} channels"
+        else:
+            positions = np.asarray(ds[()], dtype=np.float64).ravel()
+            if not np.all(np.isfinite(positions)):
+                problem = "it holds NaN or Inf"
+        if problem:
+            self.warnings.append(f"ignored /RxPosn: {problem}")
+            return ()
+        return tuple(positions)
+
+    def _truth(self, allow_external):
+        """``/Truth`` of a simulated capture, or None (with a warning when it is present but malformed)."""
+        group = self._optional("Truth", allow_external, h5py.Group)
+        if group is None:
+            return None
+        try:
+            scene_yaml = _text_attribute(group.attrs, "scene_yaml")
+            expected = parse_json_bounded(_text_attribute(group.attrs, "expected_json") or "{}")
+            if not isinstance(expected, dict):
+                raise ValueError(f"expected_json is a {type(expected).__name__}, not an object")
+        except (ValueError, TypeError, KeyError, OSError) as exc:
+            self.warnings.append(f"ignored /Truth: {exc}")
+            return None
+        return {"scene_yaml": scene_yaml or "", "expected": expected}
 
     def _raw(self, start, stop, channels=None, out=None):
         """Stored samples of chirps ``start:stop``, channel-major (C, M, N_stored), read into ``out`` if given."""
@@ -228,7 +452,26 @@ class RadarlogReader:
         if block.dtype.kind == "f" and not np.all(np.isfinite(block)):
             raise CaptureFormatError(
                 f"{self.path}: chirps {start}..{stop - 1} hold NaN or Inf samples; the capture is corrupt")
+        if channels is None and not self._varies:
+            with self._lock:
+                if self._first_chirp is None:
+                    self._first_chirp = block[:, 0].copy()
+            if np.any(block != self._first_chirp[:, None, :]):
+                self._varies = True
         return block
+
+    def constant_description(self):
+        """None once two chirps read (all channels, by :meth:`read_counts`) differ; otherwise what every chirp holds.
+
+        Constant data (all zeros, a fill value, one chirp repeated) carry no signal: their noise
+        estimate is zero and would pass every detection threshold.
+        """
+        if self._varies or self._first_chirp is None:
+            return None
+        values = np.unique(self._first_chirp)
+        if len(values) == 1:
+            return f"every sample read is {values[0].item()!r} (constant data, such as a fill value)"
+        return "every chirp read repeats the same samples (zero variance across chirps in every channel)"
 
     def read_chirps(self, start, stop, *, channels=None):
         """Chirps ``start:stop`` as float32 volts, shape (chirps, channels, samples)."""
@@ -252,7 +495,7 @@ class RadarlogReader:
         self.close()
 
 
-def open_capture(path, *, frame_counter="auto", overrides=None):
+def open_capture(path, *, frame_counter="auto", overrides=None, allow_external=False):
     """Open a Radarlog capture for reading.
 
     Parameters
@@ -262,15 +505,47 @@ def open_capture(path, *, frame_counter="auto", overrides=None):
         Whether sample 0 of each chirp is a frame counter; "auto" detects a strictly increasing
         integer sequence in the first chirps.
     overrides : mapping, optional
-        Attribute values (by canonical name, e.g. ``{"Tp": 64e-6}``) that replace or supply the file's.
+        Attribute values (by canonical name, e.g. ``{"Tp": 64e-6}``) that replace or supply the file's;
+        they are checked like the file's.
+    allow_external : bool
+        Read samples from other files (external links, virtual datasets, external raw storage) for a
+        trusted file; by default such a capture is refused, since a file from the field could make
+        the reader read any file on the machine or block on a FIFO.
+
+    Raises
+    ------
+    CaptureFormatError
+        With one line naming the problem: not a regular file, data outside the file, a declared shape
+        the stored bytes cannot hold, parameters out of range (see ``mdpipe.params.RADAR_LIMITS``).
     """
-    return RadarlogReader(path, frame_counter=frame_counter, overrides=overrides)
+    return RadarlogReader(path, frame_counter=frame_counter, overrides=overrides, allow_external=allow_external)
+
+
+def create_hdf5_exclusive(path, *, attempts=100):
+    """A new HDF5 file under a unique hidden name beside ``path``; returns ``(h5py.File, name)``.
+
+    HDF5 creates it with ``O_CREAT | O_EXCL`` (mode ``"x"``), which never follows a symlink and fails
+    on any existing name, and with the umask's mode, like any new file.
+    """
+    folder, name = os.path.split(os.path.abspath(path))
+    for _ in range(attempts):
+        candidate = os.path.join(folder, f".{name}.{os.urandom(6).hex()}.partial")
+        try:  # without HDF5's file lock, so that the file can be reopened while its descriptor is held
+            return h5py.File(candidate, "x", locking=False), candidate
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"{folder}: no free temporary name after {attempts} attempts")
 
 
 class CaptureWriter:
     """Write a canonical Radarlog capture chunk by chunk; the file appears only when complete.
 
-    Use as a context manager; data goes to ``<path>.partial`` and is renamed on success.
+    Use as a context manager. Data go to a new hidden file beside ``path``, created exclusively
+    (:func:`create_hdf5_exclusive`: a symlink or file planted there is never followed), written
+    through a descriptor of that file (``/Truth`` reopens it by name and checks it is the same file),
+    and renamed to ``path`` on success; on any exception, KeyboardInterrupt and SystemExit included,
+    it is removed. With ``overwrite=False`` an existing ``path`` is kept and :class:`FileExistsError`
+    raised.
 
     HDF5 allocates every row chunk of every channel when the datasets are made (early allocation,
     no fill); the chunks' byte offsets are looked up once, and :meth:`write_chirps` writes the rows
@@ -281,13 +556,16 @@ class CaptureWriter:
     the same bytes.
     """
 
-    def __init__(self, path, params, n_chirps, *, creator, truth=None, chunk_rows=64):
+    def __init__(self, path, params, n_chirps, *, creator, truth=None, chunk_rows=64, overwrite=True):
         self.path = os.fspath(path)
         self.params, self.n_chirps = params, int(n_chirps)
         self.chunk_rows = max(1, min(chunk_rows, self.n_chirps))
-        self._partial = self.path + ".partial"
+        self._overwrite = overwrite
         self._truth = truth
-        with h5py.File(self._partial, "w") as h5:
+        h5 = None
+        try:
+            h5, self.partial_path = create_hdf5_exclusive(self.path)
+            self._fd = os.dup(h5.id.get_vfd_handle())  # the writes go to this file, never to a name
             attrs = h5.attrs
             attrs["fStrt"] = np.float64(params.f_start_hz)
             attrs["fStop"] = np.float64(params.f_stop_hz)
@@ -303,7 +581,19 @@ class CaptureWriter:
             if params.rx_positions_m:
                 h5.create_dataset("RxPosn", data=np.asarray(params.rx_positions_m, dtype=np.float64),
                                   track_times=False)
-        self._fd = os.open(self._partial, os.O_WRONLY)
+            h5.close()
+        except BaseException:
+            if h5 is not None:
+                h5.close()
+                self._discard()
+            raise
+
+    def _discard(self):
+        if getattr(self, "_fd", None) is not None:
+            os.close(self._fd)
+            self._fd = None
+        if os.path.exists(self.partial_path):
+            os.remove(self.partial_path)
 
     def _allocate(self, h5, name):
         """Make a row-chunked int16 dataset with all chunks allocated; return the chunks' byte offsets."""
@@ -336,15 +626,21 @@ class CaptureWriter:
         return self
 
     def __exit__(self, exc_type, exc, tb):
-        os.close(self._fd)
         if exc_type is not None:
-            os.remove(self._partial)
+            self._discard()
             return
-        if self._truth is not None:
-            with h5py.File(self._partial, "r+") as h5:
-                gcpl = h5py.h5p.create(h5py.h5p.GROUP_CREATE)
-                gcpl.set_obj_track_times(False)
-                group = h5py.Group(h5py.h5g.create(h5.id, b"Truth", gcpl=gcpl))
-                group.attrs["scene_yaml"] = self._truth["scene_yaml"]
-                group.attrs["expected_json"] = json.dumps(self._truth["expected"], indent=1)
-        os.replace(self._partial, self.path)
+        try:
+            if self._truth is not None:
+                with h5py.File(self.partial_path, "r+", locking=False) as h5:
+                    if not os.path.samestat(os.fstat(h5.id.get_vfd_handle()), os.fstat(self._fd)):
+                        raise OSError(f"{self.partial_path}: the temporary file was replaced while being written")
+                    gcpl = h5py.h5p.create(h5py.h5p.GROUP_CREATE)
+                    gcpl.set_obj_track_times(False)
+                    group = h5py.Group(h5py.h5g.create(h5.id, b"Truth", gcpl=gcpl))
+                    group.attrs["scene_yaml"] = self._truth["scene_yaml"]
+                    group.attrs["expected_json"] = json.dumps(self._truth["expected"], indent=1)
+            publish(self.partial_path, self.path, overwrite=self._overwrite)
+        except BaseException:
+            self._discard()
+            raise
+        os.close(self._fd)

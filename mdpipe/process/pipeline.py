@@ -7,7 +7,7 @@ import numpy as np
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
-from mdpipe.process import ranging, selection
+from mdpipe.process import memory, ranging, selection
 from mdpipe.process.classify import classify
 from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, analyse_target
 
@@ -58,32 +58,36 @@ def _base_row(path, stats, process, params):
     }
 
 
-def process_capture(path, process, *, frame_counter="auto", overrides=None):
+def process_capture(path, process, *, frame_counter="auto", overrides=None, allow_external=False):
     """Analyse one capture; returns a :class:`CaptureResult`.
 
     Raises :class:`mdpipe.errors.CaptureFormatError` for unreadable files and
-    :class:`mdpipe.errors.ParameterError` when the capture is too short to analyse.
+    :class:`mdpipe.errors.ParameterError` when the capture is too short to analyse, needs more memory
+    than ``process.max_memory_gb`` or holds no signal.
     """
-    with open_capture(path, frame_counter=frame_counter, overrides=overrides) as reader:
+    with open_capture(path, frame_counter=frame_counter, overrides=overrides,
+                      allow_external=allow_external) as reader:
         params = reader.params
         if reader.n_chirps < MIN_CHIRPS:
             raise ParameterError(f"{path}: {reader.n_chirps} chirp(s); the analysis needs at least {MIN_CHIRPS}")
+        memory.check_memory(reader, process)
+        n_gate = memory.gate_bin_counts(params, process)[1]  # known before pass 1: an empty gate cannot crash it
+        if n_gate < 3:
+            raise ParameterError(f"{path}: the range gate [{process.min_range_m:g}, {process.max_range_m:g}] m holds "
+                                 f"{n_gate} bin(s) of {params.range_bin_m:.3g} m; widen it")
         stats = ranging.gate_statistics(reader, window=process.range_window, zero_pad=process.zero_pad,
                                         min_range_m=process.min_range_m,
                                         max_range_m=min(process.max_range_m, params.max_range_m),
                                         chunk_chirps=process.chunk_chirps)
-        if stats.static_power.max() == 0 and stats.moving_power.max() == 0:
-            raise ParameterError(f"{path}: every sample is zero; the recording holds no signal")
-        if len(stats.gate_bins) < 3:
-            raise ParameterError(f"{path}: the range gate [{process.min_range_m:g}, {process.max_range_m:g}] m holds "
-                                 f"{len(stats.gate_bins)} bin(s) of {params.range_bin_m:.3g} m; widen it")
+        if reader.constant_description():
+            raise ParameterError(f"{path}: {reader.constant_description()}; the recording holds no signal")
         if process.range_m is not None:
             detections = [selection.manual_detection(stats, process.range_m)]
         else:
             detections = selection.detect(stats, detection_db=process.detection_db, max_targets=process.max_targets,
                                           zero_pad=process.zero_pad)
         noise = selection.noise_power(stats) / params.n_channels
-        capture_notes = []
+        capture_notes = list(reader.warnings)
         if stats.clipped_fraction > 0:
             capture_notes.append(f"{stats.clipped_fraction:.2%} of the samples sit at the int16 full scale (clipped): "
                                  "amplitudes and spectra are distorted")

@@ -4,11 +4,11 @@ import csv
 import json
 import math
 import os
-import tempfile
 from dataclasses import asdict
 from pathlib import Path
 
 from mdpipe import __version__
+from mdpipe.outputs import create_temporary, publish
 
 JSON_KEYS = ("file", "range_m", "class", "doppler_bw_hz", "doppler_bw_mps", "chopping_freq_hz", "rotation_rate_hz",
              "rotation_period_s", "blade_length_m", "body_velocity_mps", "wingbeat_freq_hz", "aliased", "snr_db",
@@ -18,13 +18,16 @@ FEATURES_SUFFIX = ".features.csv"
 
 
 def atomic_write(path, write):
-    """Call ``write(tmp_path)`` and move the result to ``path`` only when it succeeded."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    """Call ``write(tmp_path)`` and move the result to ``path`` only when it succeeded.
+
+    The temporary file is new and exclusive (:func:`mdpipe.outputs.create_temporary`); the result
+    has the mode the umask gives.
+    """
+    fd, tmp = create_temporary(path)
     os.close(fd)
     try:
         write(tmp)
-        os.replace(tmp, path)
+        publish(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
             os.remove(tmp)
@@ -37,6 +40,15 @@ def _clean(value):
     if hasattr(value, "item"):
         return _clean(value.item())
     return value
+
+
+def finite_json(value):
+    """``value`` (nested dicts, lists, tuples, numpy scalars) with NaN and +-inf as None: strict JSON."""
+    if isinstance(value, dict):
+        return {key: finite_json(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [finite_json(item) for item in value]
+    return _clean(value)
 
 
 def json_record(row):

@@ -2,6 +2,7 @@
 
 import dataclasses
 import os
+import shutil
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -16,6 +17,8 @@ from mdpipe.simulate.synth import CHUNK_CHIRPS, if_factors, plan_targets
 from mdpipe.simulate.truth import expected_features
 
 TILE_ROWS = 64
+GIB = 2**30
+TRACK_BYTES_PER_CHIRP = 16 + 128  # chirp times, and per target its body track (measured: <= 112 B per chirp)
 NOISE_PEAK_SIGMAS = 7.0  # P(|n| > 7 sigma) = 2.6e-12 per sample: ~0.002 clipped samples in 1.3 GB
 POWER_SAMPLES = 20000
 
@@ -85,7 +88,51 @@ def synthesize_channel(lhs, rhs, out, *, sigma_lsb, rng):
     return clipped
 
 
-def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps=CHUNK_CHIRPS):
+def _check_budget(needed, budget_gb, what):
+    if needed > budget_gb * GIB:
+        raise ParameterError(f"simulating would need about {needed / GIB:.3g} GB of memory ({what}), over the "
+                             f"{budget_gb:g} GB budget; use fewer chirps (--chirps), RX channels (--channels) or "
+                             "targets, or raise --max-memory-gb")
+
+
+def check_output(scene, out_path, *, overwrite, chunk_chirps=CHUNK_CHIRPS, max_memory_gb=2.0):
+    """Refuse, before anything is allocated, a capture that cannot be written to ``out_path``.
+
+    Checks that the folder exists, that ``out_path`` is free (unless ``overwrite``), that the file
+    fits in the free disk space and that the chirp-long arrays (body tracks, ``TRACK_BYTES_PER_CHIRP``
+    per chirp and target) and the two chunk buffers fit in ``max_memory_gb``.
+    """
+    radar, n_chirps = scene.radar.params, scene.radar.n_chirps
+    folder = os.path.dirname(os.path.abspath(out_path))
+    if not os.path.isdir(folder):
+        raise ParameterError(f"{out_path}: the folder {folder} does not exist; create it or choose another -o")
+    if os.path.isdir(out_path):
+        raise ParameterError(f"{out_path}: is a folder; name the output file")
+    if os.path.lexists(out_path) and not overwrite:
+        raise ParameterError(f"{out_path}: exists; pass --force to replace it")
+    size = n_chirps * radar.n_samples * radar.n_channels * 2  # int16 samples
+    free = shutil.disk_usage(folder).free
+    if size > free:
+        raise ParameterError(
+            f"{out_path}: the capture would take {size:,} bytes ({size / GIB:.3g} GB: {n_chirps} chirps x "
+            f"{radar.n_samples} samples x {radar.n_channels} RX x 2 B) but {folder} has {free / GIB:.3g} GB free; "
+            "use fewer chirps (--chirps) or RX channels (--channels)")
+    tracks = n_chirps * TRACK_BYTES_PER_CHIRP * max(1, len(scene.targets))
+    buffers = 2 * radar.n_channels * min(chunk_chirps, n_chirps) * radar.n_samples * 2
+    _check_budget(tracks + buffers, max_memory_gb,
+                  f"{tracks / GIB:.3g} GB of body tracks for {n_chirps} chirps x {len(scene.targets)} targets, "
+                  f"{buffers / GIB:.3g} GB of int16 chunk buffers")
+
+
+def _check_factor_memory(plans, radar, rows, max_memory_gb):
+    """The IF factors of two chunks (float32, 2K columns a target) and the echoes behind them (complex128)."""
+    nodes = sum(len(plan.nodes_s) for plan in plans)
+    factors = 2 * (radar.n_channels * rows * 2 * nodes * 4 + rows * nodes * 64 + 2 * nodes * radar.n_samples * 4)
+    _check_budget(factors, max_memory_gb, f"IF factors of {rows} chirps x {radar.n_channels} RX x {nodes} nodes")
+
+
+def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps=CHUNK_CHIRPS, overwrite=True,
+                     max_memory_gb=2.0):
     """Write the capture of ``scene`` to ``out_path`` and return the truth stored with it.
 
     Parameters
@@ -96,9 +143,18 @@ def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps
         The scene as given, stored in ``/Truth``.
     progress : callable, optional
         Called with the number of chirps finished after each chunk.
+    overwrite : bool
+        Replace an existing ``out_path``; if False it is kept and :class:`ParameterError` raised.
+    max_memory_gb : float
+        Memory budget (GiB) checked before the arrays are made (:func:`check_output`).
+
+    The capture is written to a new hidden file beside ``out_path`` (see
+    :class:`mdpipe.io.CaptureWriter`), renamed when complete and removed on any error or interrupt.
     """
     radar, n_chirps = scene.radar.params, scene.radar.n_chirps
+    check_output(scene, out_path, overwrite=overwrite, chunk_chirps=chunk_chirps, max_memory_gb=max_memory_gb)
     plans = plan_targets(scene, chunk_chirps=chunk_chirps)
+    _check_factor_memory(plans, radar, min(chunk_chirps, n_chirps), max_memory_gb)
     powers_v2 = target_powers_v2(plans, radar, n_chirps)
     sigma_v = noise_sigma_v(scene.noise, plans, powers_v2)
     if scene.adc.full_scale_v is not None:
@@ -119,7 +175,8 @@ def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps
         return if_factors(plans, first, min(chunk_chirps, n_chirps - first), radar=radar, scale=1.0 / lsb_v)
 
     firsts = list(range(0, n_chirps, chunk_chirps))
-    with CaptureWriter(out_path, writer_params, n_chirps, creator=f"mdpipe {__version__} simulate") as writer, \
+    with CaptureWriter(out_path, writer_params, n_chirps, creator=f"mdpipe {__version__} simulate",
+                       overwrite=overwrite) as writer, \
             threadpool_limits(limits=1, user_api="blas"), \
             ThreadPoolExecutor(max_workers=min(radar.n_channels, os.cpu_count() or 1)) as pool, \
             ThreadPoolExecutor(max_workers=1) as io, ThreadPoolExecutor(max_workers=1) as ahead:

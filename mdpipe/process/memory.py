@@ -1,0 +1,107 @@
+"""The memory a capture's processing will take, planned from its layout and the options before pass 1.
+
+The estimate adds the arrays :mod:`mdpipe.process.ranging` and the analysis allocate (see
+:func:`plan_bytes`); a capture whose plan exceeds the budget is refused with the estimate and the
+option to change, instead of growing until the machine swaps or the kernel kills it.
+"""
+
+from dataclasses import replace
+
+import numpy as np
+
+from mdpipe.errors import ParameterError
+from mdpipe.process import ranging
+
+GIB = 2**30
+PASS2_BINS_PER_TARGET = 64  # bins a target's path may cross (a bird at 15 m/s over 1 s at 0.23 m bins)
+ANALYSIS_BYTES_PER_CHIRP = 1024  # per target: complex128 copies and spectrograms of the slow-time signal
+BASE_BYTES = 64 * 2**20  # the interpreter, numpy, h5py and BLAS, before any array (measured: 55-60 MB)
+
+
+def gate_bin_counts(params, process):
+    """Bins from 0 to the gate's end (K) and inside the gate (B) on the padded grid, as in ``gate_statistics``."""
+    ranges = ranging.bin_range_m(np.arange(process.zero_pad * params.n_samples // 2 + 1), params, process.zero_pad)
+    ranges = ranges[ranges <= min(process.max_range_m, params.max_range_m)]
+    return len(ranges), int(np.count_nonzero(ranges[1:] >= process.min_range_m))
+
+
+def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_bytes, params, process):
+    """Estimated peak bytes of processing one capture, by part.
+
+    Parameters
+    ----------
+    n_chirps, n_channels, n_samples : int
+        The capture's layout (``n_samples`` as stored, with a frame counter column).
+    sample_itemsize : int
+        Bytes per stored sample (2 for int16).
+    read_chunk_bytes : int
+        Bytes HDF5 decompresses at once (``RadarlogReader.read_chunk_bytes``).
+    params : RadarParams
+    process : ProcessParams
+
+    Returns
+    -------
+    dict
+        ``{part: bytes}``; the peak is ``max(pass 1, pass 2) + analysis + base``. Pass 1 holds, in each of
+        the ``ranging.WORKERS`` threads that have a chunk, a read buffer of a chunk's probed chirps and
+        its DFT at the K bins (real product and complex result, 24 B per chirp, channel and bin; then
+        the result, the gate's slow-time copies and a conjugate, 8 B per bin and 24 B per gate bin)
+        with their channel products; beside them the range DFT matrix while it is built (40 B per
+        sample and bin: complex128 exponential, its windowed copy, float64 real and imaginary parts
+        and the float32 result) and the accumulators. Pass 2 reads ``ranging.READ_CHIRPS`` chirps per
+        thread and keeps the slow time (n_chirps x bins, complex64).
+    """
+    c, n = n_channels, n_samples
+    k, b = gate_bin_counts(params, process)
+    fft_bins = process.zero_pad * params.n_samples // 2 + 1
+    probe = min(ranging.PROBE_CHIRPS, process.chunk_chirps)  # rows read of each chunk, as gate_statistics does
+    if n_chirps * probe / process.chunk_chirps < ranging.MIN_PROBED_CHIRPS:
+        probe = process.chunk_chirps
+    workers = min(ranging.WORKERS, -(-n_chirps // process.chunk_chirps))  # threads with a chunk at once
+    reads = workers * read_chunk_bytes
+    pass1 = (workers * (c * probe * n * sample_itemsize + c * probe * max(24 * k, 8 * k + 24 * b) + 8 * b * c * c)
+             + 40 * params.n_samples * k                                  # DFT matrix while it is built
+             + 16 * k * c + 16 * b * c * c                                # accumulators
+             + 8 * b * (-(-n_chirps // process.chunk_chirps)) + reads)   # per-chunk power of the gate bins
+    n_bins = min(b, process.max_targets * PASS2_BINS_PER_TARGET)
+    real = np.dtype(process.dtype).itemsize
+    rows = ranging.READ_CHIRPS
+    per_thread = c * rows * n * sample_itemsize + (
+        c * rows * (fft_bins * 4 * real + n * 2 * real) if process.range_bins == "all"  # rfft, conj, windowed
+        else c * rows * n_bins * 8 * real)
+    workers = min(ranging.WORKERS, -(-n_chirps // rows))
+    pass2 = workers * per_thread + 2 * n_chirps * n_bins * 2 * real + 8 * params.n_samples * n_bins + reads
+    analysis = process.max_targets * n_chirps * ANALYSIS_BYTES_PER_CHIRP
+    return {"pass 1": pass1, "pass 2": pass2, "analysis": analysis, "base": BASE_BYTES,
+            "peak": max(pass1, pass2) + analysis + BASE_BYTES}
+
+
+def check_memory(reader, process):
+    """Refuse ``reader``'s capture when the plan for ``process`` exceeds ``process.max_memory_gb``.
+
+    Raises
+    ------
+    ParameterError
+        Naming the estimate, its largest part and the options that bring it down.
+    """
+    layout = dict(n_chirps=reader.n_chirps, n_channels=reader.params.n_channels,
+                  n_samples=reader.params.n_samples + reader.layout.frame_counter,
+                  sample_itemsize=np.dtype(reader.layout.sample_dtype).itemsize,
+                  read_chunk_bytes=reader.read_chunk_bytes, params=reader.params)
+    plan = plan_bytes(**layout, process=process)
+    budget = process.max_memory_gb * GIB
+    if plan["peak"] <= budget:
+        return plan
+    k, b = gate_bin_counts(reader.params, process)
+    hints = []
+    if process.zero_pad > 1:
+        smaller = plan_bytes(**layout, process=replace(process, zero_pad=1))["peak"]
+        hints.append(f"--zero-pad 1 ({smaller / GIB:.2f} GB)")
+    hints.append(f"a shorter --max-range-m ({k} range bins up to {min(process.max_range_m, reader.params.max_range_m):g} m)")
+    largest = max(("pass 1", "pass 2", "analysis"), key=plan.get)
+    raise ParameterError(
+        f"{reader.path}: processing would need about {plan['peak'] / GIB:.2f} GB ({largest} {plan[largest] / GIB:.2f} GB "
+        f"for {reader.params.n_channels} RX x {reader.params.n_samples} samples x {b} gate bins, "
+        f"{reader.n_chirps} chirps), over the {process.max_memory_gb:g} GB budget; use "
+        f"{' or '.join(hints)}, or raise --max-memory-gb")
+

@@ -1,0 +1,197 @@
+"""Hostile and broken Radarlog files, made with h5py: one builder per class, each ``build(folder) -> path``.
+
+Used by tests/test_hostile_files.py and benchmarks/bench_hostile.py. Every builder writes a capture
+that is valid except for one thing.
+"""
+
+import json
+import os
+
+import h5py
+import numpy as np
+
+ATTRS = {"fStrt": 76e9, "fStop": 76.04e9, "TRampUp": 51.2e-6, "Tp": 64e-6, "fs": 5e6, "N": 256, "NrChn": 1,
+         "FuSca": 1e-4}
+N_CHIRPS = 128
+
+
+def noise_counts(n_chirps=N_CHIRPS, n_samples=256, seed=0):
+    return np.random.default_rng(seed).integers(-300, 300, size=(n_chirps, n_samples), dtype=np.int16)
+
+
+def write(path, *, attrs=None, data=None, extra=None):
+    """A capture with root ``attrs`` (ATTRS updated), ``/Chn1`` = ``data`` (noise by default), then ``extra(h5)``."""
+    with h5py.File(path, "w") as h5:
+        for key, value in {**ATTRS, **(attrs or {})}.items():
+            h5.attrs[key] = value
+        if data is not False:
+            h5.create_dataset("Chn1", data=noise_counts() if data is None else data)
+        if extra is not None:
+            extra(h5)
+    return path
+
+
+def _valid_other(folder):
+    return write(folder / "other.h5")
+
+
+def external_link(folder):
+    other = _valid_other(folder)
+    return write(folder / "extlink.h5", data=False,
+                 extra=lambda h5: h5.__setitem__("Chn1", h5py.ExternalLink(str(other), "/Chn1")))
+
+
+def soft_link_dangling(folder):
+    return write(folder / "dangling.h5", data=False,
+                 extra=lambda h5: h5.__setitem__("Chn1", h5py.SoftLink("/nowhere")))
+
+
+def soft_link_out(folder):
+    other = _valid_other(folder)
+
+    def extra(h5):
+        h5["ext"] = h5py.ExternalLink(str(other), "/")
+        h5["Chn1"] = h5py.SoftLink("/ext/Chn1")
+    return write(folder / "softout.h5", data=False, extra=extra)
+
+
+def virtual_missing_source(folder):
+    def extra(h5):
+        layout = h5py.VirtualLayout(shape=(N_CHIRPS, 256), dtype=np.int16)
+        layout[:] = h5py.VirtualSource(str(folder / "missing.h5"), "Chn1", shape=(N_CHIRPS, 256))
+        h5.create_virtual_dataset("Chn1", layout, fillvalue=0)
+    return write(folder / "vds.h5", data=False, extra=extra)
+
+
+def _external_raw(folder, name, target, n_chirps=N_CHIRPS):
+    return write(folder / name, data=False, extra=lambda h5: h5.create_dataset(
+        "Chn1", shape=(n_chirps, 256), dtype=np.int16, external=[(str(target), 0, n_chirps * 256 * 2)]))
+
+
+def external_raw_passwd(folder):
+    return _external_raw(folder, "passwd.h5", "/etc/passwd")
+
+
+def external_raw_fifo(folder):
+    fifo = folder / "pipe"
+    os.mkfifo(fifo)
+    return _external_raw(folder, "fifo.h5", fifo)
+
+
+def external_raw_short(folder):
+    raw = folder / "short.raw"
+    raw.write_bytes(noise_counts(8).tobytes())  # 8 of the 128 chirps declared
+    return _external_raw(folder, "extshort.h5", raw)
+
+
+def huge_declared_contiguous(folder):
+    """2 KB on disk, (1e9, 2048) int16 declared (4 TB), nothing stored."""
+    return write(folder / "huge.h5", attrs={"N": 2048, "fs": 40e6}, data=False,
+                 extra=lambda h5: h5.create_dataset("Chn1", shape=(10**9, 2048), dtype=np.int16))
+
+
+def huge_declared_chunked(folder):
+    return write(folder / "hugechunked.h5", attrs={"N": 2048, "fs": 40e6}, data=False,
+                 extra=lambda h5: h5.create_dataset("Chn1", shape=(10**9, 2048), dtype=np.int16, chunks=(64, 2048)))
+
+
+def sparse_chunks(folder):
+    """Chunked by 16 rows, only the first chunk written: the rest would read as fill values."""
+    def extra(h5):
+        ds = h5.create_dataset("Chn1", shape=(N_CHIRPS, 256), dtype=np.int16, chunks=(16, 256))
+        ds[:16] = noise_counts(16)
+    return write(folder / "sparse.h5", data=False, extra=extra)
+
+
+def compressed_huge_chunk(folder):
+    """128 chirps in one gzip chunk declared (140 000, 256): 72 MB decoded from a few KB."""
+    return write(folder / "bomb.h5", data=False, extra=lambda h5: h5.create_dataset(
+        "Chn1", data=noise_counts(), chunks=(140_000, 256), maxshape=(None, 256), compression="gzip"))
+
+
+def _attrs(name, **values):
+    return lambda folder: write(folder / f"{name}.h5", attrs=values)
+
+
+fstop_inf = _attrs("fstopinf", fStop=np.inf)
+fs_absurd = _attrs("fs1e15", fs=1e15)
+fusca_absurd = _attrs("fusca", FuSca=1e300)
+tp_absurd = _attrs("tp", Tp=1.8e19)
+
+
+def n_two_data(folder):
+    return write(folder / "n2.h5", attrs={"N": 2}, data=noise_counts(n_samples=2))
+
+
+def chn1_group(folder):
+    return write(folder / "chngroup.h5", data=False, extra=lambda h5: h5.create_group("Chn1"))
+
+
+def rxposn_group(folder):
+    return write(folder / "rxgroup.h5", extra=lambda h5: h5.create_group("RxPosn"))
+
+
+def rxposn_strings(folder):
+    return write(folder / "rxstr.h5", extra=lambda h5: h5.create_dataset("RxPosn", data=np.array([b"a", b"b"])))
+
+
+def rxposn_wrong_length(folder):
+    return write(folder / "rxlen.h5", extra=lambda h5: h5.create_dataset("RxPosn", data=np.zeros(5)))
+
+
+def _truth(name, expected_json):
+    def extra(h5):
+        h5.create_group("Truth").attrs["expected_json"] = expected_json
+    return lambda folder: write(folder / f"{name}.h5", extra=extra)
+
+
+truth_invalid = _truth("truthbad", "{not json")
+truth_deep = _truth("truthdeep", "[" * 200_000 + "]" * 200_000)
+truth_wrong_type = _truth("truthtype", json.dumps([1, 2, 3]))
+
+
+def truth_dataset(folder):
+    return write(folder / "truthds.h5", extra=lambda h5: h5.create_dataset("Truth", data=np.arange(3)))
+
+
+def _constant(name, value):
+    return lambda folder: write(folder / f"{name}.h5", data=np.full((N_CHIRPS, 256), value, dtype=np.int16))
+
+
+constant_zero = _constant("zeros", 0)
+constant_full_scale = _constant("fullscale", 32767)
+constant_value = _constant("seven", 7)
+
+
+def fill_value_only(folder):
+    """Contiguous, allocated early, never written: every sample is the fill value 7."""
+    def extra(h5):
+        dcpl = h5py.h5p.create(h5py.h5p.DATASET_CREATE)
+        dcpl.set_alloc_time(h5py.h5d.ALLOC_TIME_EARLY)
+        dcpl.set_fill_value(np.array(7, dtype=np.int16))
+        h5py.h5d.create(h5.id, b"Chn1", h5py.h5t.STD_I16LE, h5py.h5s.create_simple((N_CHIRPS, 256)), dcpl=dcpl)
+    return write(folder / "fill.h5", data=False, extra=extra)
+
+
+def path_is_fifo(folder):
+    path = folder / "capture_fifo.h5"
+    os.mkfifo(path)
+    return path
+
+
+def big_layout(name, *, n_samples, n_channels, n_chirps, fs_hz):
+    """A plausible capture of a large layout (noise samples), in ``/Data`` (n_chirps, NrChn, N)."""
+    def build(folder):
+        rng = np.random.default_rng(1)
+        data = rng.integers(-300, 300, size=(n_chirps, n_channels, n_samples), dtype=np.int16)
+        return write(folder / f"{name}.h5", attrs={"N": n_samples, "NrChn": n_channels, "fs": fs_hz,
+                                                   "fStop": 77e9}, data=False,
+                     extra=lambda h5: h5.create_dataset("Data", data=data, chunks=(16, n_channels, n_samples)))
+    return build
+
+
+# N = 4096 at 80 MHz in 51.2 us over 1 GHz: 0.15 m bins, a 200 m gate holds 1333 bins (21 000 with --zero-pad 16)
+n4096 = big_layout("n4096", n_samples=4096, n_channels=1, n_chirps=2048, fs_hz=80e6)
+n32768 = big_layout("n32768", n_samples=32768, n_channels=1, n_chirps=128, fs_hz=640e6)
+ch2048 = big_layout("ch2048", n_samples=256, n_channels=2048, n_chirps=64, fs_hz=5e6)
+ch64 = big_layout("ch64", n_samples=2048, n_channels=64, n_chirps=256, fs_hz=40e6)
