@@ -79,8 +79,11 @@ class RadarParams:
             value = getattr(self, name)
             if not (isinstance(value, (int, float, np.integer, np.floating)) and np.isfinite(value)
                     and low <= value <= high):
+                hint = ""
+                if name in ("f_start_hz", "f_stop_hz") and np.isfinite(value) and low <= value * 1e9 <= high:
+                    hint = f"; did you mean {value:g}e9?"
                 raise ParameterError(f"{name}={value!r} must be a finite number in [{low:g}, {high:g}]"
-                                     f"{' ' + unit if unit else ''} ({meaning})")
+                                     f"{' ' + unit if unit else ''} ({meaning}){hint}")
         for name in ("n_samples", "n_channels"):
             if int(getattr(self, name)) != getattr(self, name):
                 raise ParameterError(f"{name}={getattr(self, name)!r} must be an integer")

@@ -30,7 +30,8 @@ def drone(**rotors):
 
 @pytest.mark.parametrize("data, message", [
     (scene(K_BAND | {"f_start_hz": 24.0, "f_stop_hz": 24.25e9}),
-     r"^radar: f_start_hz=24 Hz is not a radar carrier \(at least 1e\+08 Hz\); did you mean 24e9\?$"),
+     r"^radar: f_start_hz=24.0 must be a finite number in \[1e\+08, 3e\+11\] Hz \(chirp start frequency: "
+     r"100 MHz to 300 GHz\); did you mean 24e9\?$"),
     (scene(K_BAND | {"f_stop_hz": 30e9}),
      r"^radar: the sweep is 6 GHz wide, 22 % of its 27 GHz centre \(at most 20 %\); check f_start_hz and f_stop_hz$"),
     (scene(targets=[drone(blade_length_m=12)]),
