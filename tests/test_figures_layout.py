@@ -149,3 +149,15 @@ def test_the_check_finds_a_title_off_the_canvas():
     plt.close(fig)
     assert any("far too long" in item for item in outside)
     assert len(overlaps) == 1
+
+
+def test_png_bytes_are_reproducible(results, tmp_path):
+    """The same result gives the same PNG bytes, with no software version or machine path inside (make paper)."""
+    first, second = tmp_path / "a" / "x_spectrum.png", tmp_path / "b" / "x_spectrum.png"
+    for path in (first, second):
+        path.parent.mkdir()
+        plots.spectrum_figure(results["phantom4_xband"], path)
+    data = first.read_bytes()
+    assert data == second.read_bytes()
+    assert b"Software" not in data and b"matplotlib" not in data.lower()
+    assert str(ROOT).encode() not in data and b"Doppler power spectra of phantom4_xband.h5" in data
