@@ -175,7 +175,7 @@ def spectrogram_figure(result, path, options=FigureParams()):
         _mark_span(ax, limits, prf, which="y")
         if analysis.flash_edges_hz is not None:
             for i, edge in enumerate(analysis.flash_edges_hz):
-                ax.axhline(edge, color="w", ls="--", lw=0.9, label=None if i else
+                ax.axhline(edge, color="r", ls="--", lw=1.0, label=None if i else
                            f"flash edges: +-tip Doppler ({row['tip_doppler_hz']:.4g} Hz)")
         if row["body_doppler_hz"] is not None:
             ax.axhline(row["body_doppler_hz"], color="C1", ls=":", lw=1.2,
