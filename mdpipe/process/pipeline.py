@@ -30,8 +30,8 @@ class CaptureResult:
     detections: list
     analyses: list
     rows: list
-    noise_power: float = None
-    process: object = None
+    noise_power: float
+    process: object
 
 
 def _target_signals(reader, stats, detections, process):

@@ -69,6 +69,29 @@ def _legend_axes(fig, cell):
     return ax
 
 
+def _target_panels(result):
+    """A figure with one row per target, a plot and its legend panel: (fig, [(ax, legend cell, analysis, row)])."""
+    n = len(result.analyses)
+    fig = plt.figure(figsize=(11, 3.9 * n), layout="constrained")
+    grid = fig.add_gridspec(n, 2, width_ratios=(4.2, 1))
+    return fig, [(fig.add_subplot(grid[i, 0]), grid[i, 1], analysis, row)
+                 for i, (analysis, row) in enumerate(zip(result.analyses, result.rows))]
+
+
+def _noise_per_bin(result, n_window):
+    """The receiver noise in one bin of an ``n_window``-chirp Hann spectrum of a target (V^2): the 0 dB of the figures."""
+    return max(noise_level_per_bin(result.noise_power, n_window), np.finfo(float).tiny)
+
+
+def _body_label(row):
+    return f"body Doppler, mean ({round(row['body_doppler_hz'], 1) + 0.0:.1f} Hz)"  # + 0.0: no "-0.0"
+
+
+def _panel_title(result, row, middle, limits_text):
+    return (f"{_name(result.path)}, target {row['target']} at {row['range_m']:.4g} m: {row['class']}\n{middle}\n"
+            f"Doppler: {limits_text}")
+
+
 def doppler_view_hz(analysis, row, noise_power, prf_hz, options):
     """Doppler limits (Hz) of a target's spectrogram and spectrum, and a phrase saying what they are.
 
@@ -82,7 +105,7 @@ def doppler_view_hz(analysis, row, noise_power, prf_hz, options):
         low, high = options.doppler_limits
         return (low, high), f"{low:.4g} to {high:.4g} Hz (given) of the unambiguous {span_text}"
     spectrum = analysis.spectrum
-    if options.doppler_limits == "auto" and noise_power:
+    if options.doppler_limits == "auto" and noise_power > 0:
         band = spectral.occupied_band(spectrum, noise_level_per_bin(noise_power, len(spectrum.f_hz)),
                                       smooth_hz=max(prf_hz / 200, 4 * spectrum.resolution_hz))
         if not band.aliased and np.isfinite(band.low_hz):
@@ -112,7 +135,7 @@ def _mark_span(ax, limits, prf_hz, *, which):
 def range_figure(result, path):
     """Static and moving (MTI) power against range as steps, the detection threshold over the searched gate."""
     stats, radar, process = result.stats, result.params, result.process
-    noise = result.noise_power or max(float(np.median(stats.moving_power)), np.finfo(float).tiny)
+    noise = max(result.noise_power, np.finfo(float).tiny)
     fig, ax = plt.subplots(figsize=(9, 4.2), layout="constrained")
     ax.plot(stats.range_m, _db(stats.static_power, noise), drawstyle="steps-mid", lw=1,
             label="static: power of the slow-time mean")
@@ -127,10 +150,10 @@ def range_figure(result, path):
     ax.axvspan(0, edges[0], color="0.85", lw=0, zorder=0, label=f"not searched (gate {gate[0]:.3g}-{gate[-1]:.4g} m)")
     if edges[1] < x_max:
         ax.axvspan(edges[1], x_max, color="0.85", lw=0, zorder=0)
-    if process is not None and process.range_m is None:
+    if process.range_m is None:
         ax.hlines(process.detection_db, edges[0], min(edges[1], x_max), color="C3", ls="--", lw=1,
                   label=f"detection threshold: noise + {process.detection_db:g} dB")
-    elif process is not None:
+    else:
         ax.plot([], [], " ", label=f"range chosen with --range-m {process.range_m:g} (no detection)")
     for index, d in enumerate(result.detections):
         level = _db(stats.moving_power[d.bin], noise)
@@ -158,15 +181,11 @@ def _time_view_s(spec, row):
 
 def spectrogram_figure(result, path, options=FigureParams()):
     """One panel per target: Doppler against time (dB re noise per bin), flash edges and body Doppler marked."""
-    n = len(result.analyses)
-    fig = plt.figure(figsize=(11, 3.9 * n), layout="constrained")
-    grid = fig.add_gridspec(n, 2, width_ratios=(4.2, 1))
+    fig, panels = _target_panels(result)
     prf = result.params.prf_hz
-    for index, (analysis, row) in enumerate(zip(result.analyses, result.rows)):
-        ax = fig.add_subplot(grid[index, 0])
+    for ax, key_cell, analysis, row in panels:
         spec = analysis.spectrogram
-        reference = noise_level_per_bin(result.noise_power, len(spec.f_hz)) if result.noise_power else spec.power.min()
-        level = _db(spec.power, reference)
+        level = _db(spec.power, _noise_per_bin(result, len(spec.f_hz)))
         top = float(level.max())
         mesh = ax.pcolormesh(spec.t_s, spec.f_hz, level, shading="nearest", cmap="viridis",
                              vmin=max(top - DYNAMIC_RANGE_DB, NOISE_SHOWN_DB), vmax=top, rasterized=True)
@@ -179,18 +198,17 @@ def spectrogram_figure(result, path, options=FigureParams()):
                            f"flash edges: +-tip Doppler ({row['tip_doppler_hz']:.4g} Hz)")
         if row["body_doppler_hz"] is not None:
             ax.axhline(row["body_doppler_hz"], color="C1", ls=":", lw=1.2,
-                       label=f"body Doppler, mean ({row['body_doppler_hz']:.1f} Hz)")
+                       label=_body_label(row))
         times, time_text = _time_view_s(spec, row)
         ax.set_xlim(*times)
         ax.set_ylim(*limits)
         ax.set_xlabel("time from the start of the capture (s)")
         ax.set_ylabel(DOPPLER_LABEL)
         _range_rate_axis(ax, row["wavelength_m"], which="y")
-        ax.set_title(f"{_name(result.path)}, target {row['target']} at {row['range_m']:.4g} m: {row['class']}\n"
-                     f"time: {time_text}; Hann window {spec.window_s * 1e3:.3g} ms, hop {spec.hop_s * 1e3:.3g} ms\n"
-                     f"Doppler: {limits_text}", fontsize=8.5)
+        ax.set_title(_panel_title(result, row, f"time: {time_text}; Hann window {spec.window_s * 1e3:.3g} ms, "
+                                  f"hop {spec.hop_s * 1e3:.3g} ms", limits_text), fontsize=8.5)
         handles, labels = ax.get_legend_handles_labels()
-        key = _legend_axes(fig, grid[index, 1])
+        key = _legend_axes(fig, key_cell)
         if handles:
             key.legend(handles, labels, **LEGEND)
         else:
@@ -209,15 +227,11 @@ def _chopping_ticks(ax, row, limits):
 
 def spectrum_figure(result, path, options=FigureParams()):
     """One panel per target: dwell power spectrum (dB re noise per bin) and every measured mark on it."""
-    n = len(result.analyses)
-    fig = plt.figure(figsize=(11, 3.9 * n), layout="constrained")
-    grid = fig.add_gridspec(n, 2, width_ratios=(4.2, 1))
+    fig, panels = _target_panels(result)
     prf = result.params.prf_hz
-    for index, (analysis, row) in enumerate(zip(result.analyses, result.rows)):
-        ax = fig.add_subplot(grid[index, 0])
+    for ax, key_cell, analysis, row in panels:
         spectrum = analysis.spectrum
-        reference = noise_level_per_bin(result.noise_power, len(spectrum.f_hz)) if result.noise_power \
-            else float(np.median(spectrum.power))
+        reference = _noise_per_bin(result, len(spectrum.f_hz))
         level = _db(spectrum.power, reference)
         ax.plot(spectrum.f_hz, level, lw=0.6, color="C0",
                 label=f"dwell power spectrum (Hann, {len(spectrum.f_hz)} chirps, {spectrum.resolution_hz:.3g} Hz bins)")
@@ -234,7 +248,7 @@ def spectrum_figure(result, path, options=FigureParams()):
                            f"flash edges: +-tip Doppler (BW {row['doppler_bw_spectrogram_hz']:.4g} Hz)")
         if row["body_doppler_hz"] is not None:
             ax.axvline(row["body_doppler_hz"], color="C4", ls="-.", lw=1,
-                       label=f"body Doppler, mean ({row['body_doppler_hz']:.1f} Hz)")
+                       label=_body_label(row))
         limits, limits_text = doppler_view_hz(analysis, row, result.noise_power, prf, options)
         _mark_span(ax, limits, prf, which="x")
         if row["chopping_freq_hz"] is not None:
@@ -246,12 +260,10 @@ def spectrum_figure(result, path, options=FigureParams()):
         ax.set_ylabel(f"power ({POWER_LABEL})")
         _range_rate_axis(ax, row["wavelength_m"], which="x")
         state = "aliased: bandwidth withheld" if row["aliased"] else "not aliased"
-        ax.set_title(f"{_name(result.path)}, target {row['target']} at {row['range_m']:.4g} m: {row['class']}\n"
-                     f"power spectrum over the whole {row['dwell_s']:.3g} s dwell ({state})\n"
-                     f"Doppler: {limits_text}", fontsize=8.5)
+        ax.set_title(_panel_title(result, row, f"power spectrum over the whole {row['dwell_s']:.3g} s dwell ({state})",
+                                  limits_text), fontsize=8.5)
         ax.grid(alpha=0.3)
-        handles, labels = ax.get_legend_handles_labels()
-        _legend_axes(fig, grid[index, 1]).legend(handles, labels, **LEGEND)
+        _legend_axes(fig, key_cell).legend(*ax.get_legend_handles_labels(), **LEGEND)
     _save(fig, path, f"Doppler power spectra of {_name(result.path)}")
 
 
