@@ -9,11 +9,14 @@ import copy
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 import pandas as pd
 import pytest
 
 from conftest import XBAND, scene_mapping, simulate
+from mdpipe.errors import ParameterError
 from mdpipe.params import FigureParams, ProcessParams
+from mdpipe.process import classify
 from mdpipe.process.pipeline import process_capture
 from mdpipe.report import plots
 
@@ -137,6 +140,15 @@ def test_summary_figure_fits_the_canvas(results, monkeypatch):
     figures = []
     monkeypatch.setattr(plots, "_save", lambda fig, path, description: figures.append(fig))
     plots.summary_figure(pd.DataFrame(rows), "unused.png")
+    strip, main = figures[0].axes[:2]
+    placed = np.concatenate([c.get_offsets() for c in main.collections
+                             if isinstance(c, matplotlib.collections.PathCollection)])
+    with_rate = [r for r in rows if (r["chopping_freq_hz"] or r["wingbeat_freq_hz"]) is not None]
+    assert len(placed) == len(with_rate) == 5  # 2 + 1 + 2 drones/birds; the clutter row is not invented a point
+    assert sorted(t.get_text() for t in main.texts) == sorted(
+        ["phantom4_xband #0", "fimi_1rx #0 (aliased: at least)", "gull_flyby #0", "capture #0", "capture #1"])
+    assert [line.get_ydata()[0] for line in main.lines] == [classify.DRONE_SPREAD_MPS]
+    assert any("no moving target (1): clutter_only.h5" in t.get_text() for t in figures[0].axes[-1].texts)
     check(figures[0])
 
 
@@ -161,3 +173,54 @@ def test_png_bytes_are_reproducible(results, tmp_path):
     assert data == second.read_bytes()
     assert b"Software" not in data and b"matplotlib" not in data.lower()
     assert str(ROOT).encode() not in data and b"Doppler power spectra of phantom4_xband.h5" in data
+
+
+def test_auto_doppler_view_holds_the_blades_and_zooms(results):
+    """Phantom 4 (Table I config 7): tips at +-2 Omega r / lambda = +-3757 Hz inside a view narrower than the
+    +-12.5 kHz span; the aliased FIMI gets the whole span; given limits are kept as given."""
+    result = results["phantom4_xband"]
+    (low, high), text = plots._doppler_view_hz(result.analyses[0], result.rows[0], result.noise_power,
+                                               result.params.prf_hz, FigureParams())
+    tip_hz = 2 * (2 * np.pi * 70.0) * 0.13 / result.rows[0]["wavelength_m"]
+    assert tip_hz == pytest.approx(3757, abs=2)
+    assert low < -tip_hz and high > tip_hz and high - low < 0.6 * result.params.prf_hz
+    assert "(occupied band) of the unambiguous +-12500 Hz" in text
+    fimi = results["fimi_1rx"]
+    limits, text = plots._doppler_view_hz(fimi.analyses[0], fimi.rows[0], fimi.noise_power, fimi.params.prf_hz,
+                                          FigureParams())
+    assert limits == (-fimi.params.prf_hz / 2, fimi.params.prf_hz / 2) and text.startswith("the whole unambiguous")
+    limits, _ = plots._doppler_view_hz(fimi.analyses[0], fimi.rows[0], fimi.noise_power, fimi.params.prf_hz,
+                                       FigureParams.from_text("-500,800"))
+    assert limits == (-500.0, 800.0)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("wide", r"--doppler-limits 'wide': give auto, full or LOW,HIGH in Hz \(e.g. -500,800\)"),
+    ("1,2,3", r"--doppler-limits '1,2,3'"),
+    ("800,-500", r"doppler_limits=\(800, -500\) must be finite with LOW < HIGH \(Hz\)"),
+    ("nan,5", r"must be finite with LOW < HIGH"),
+])
+def test_doppler_limits_refused(text, message):
+    with pytest.raises(ParameterError, match=message):
+        FigureParams.from_text(text)
+
+
+def test_cli_doppler_limits(tmp_path, monkeypatch):
+    """`process --doppler-limits` reaches the figures' Doppler axes; a bad value is one line and no files."""
+    from click.testing import CliRunner
+
+    from mdpipe.cli import main
+
+    capture = str(ROOT / "data_samples" / "gull_flyby.h5")
+    bad = CliRunner().invoke(main, ["process", capture, "--out", str(tmp_path / "bad"), "--doppler-limits", "wide"])
+    assert bad.exit_code != 0 and bad.output.strip().splitlines() == [
+        "Error: --doppler-limits 'wide': give auto, full or LOW,HIGH in Hz (e.g. -500,800)"]
+    assert not (tmp_path / "bad").exists()
+    figures = {}
+    monkeypatch.setattr(plots, "_save", lambda fig, path, description: figures.update({Path(path).name: fig}))
+    good = CliRunner().invoke(main, ["process", capture, "--out", str(tmp_path), "--doppler-limits=-500,800"])
+    assert good.exit_code == 0
+    assert figures["gull_flyby_spectrum.png"].axes[0].get_xlim() == (-500.0, 800.0)
+    assert figures["gull_flyby_spectrogram.png"].axes[0].get_ylim() == (-500.0, 800.0)
+    for fig in figures.values():
+        plt.close(fig)

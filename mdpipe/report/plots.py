@@ -92,7 +92,7 @@ def _panel_title(result, row, middle, limits_text):
             f"Doppler: {limits_text}")
 
 
-def doppler_view_hz(analysis, row, noise_power, prf_hz, options):
+def _doppler_view_hz(analysis, row, noise_power, prf_hz, options):
     """Doppler limits (Hz) of a target's spectrogram and spectrum, and a phrase saying what they are.
 
     ``auto``: where the dwell spectrum (smoothed as the analysis smooths it) stands 10 dB above the
@@ -190,7 +190,7 @@ def spectrogram_figure(result, path, options=FigureParams()):
         mesh = ax.pcolormesh(spec.t_s, spec.f_hz, level, shading="nearest", cmap="viridis",
                              vmin=max(top - DYNAMIC_RANGE_DB, NOISE_SHOWN_DB), vmax=top, rasterized=True)
         fig.colorbar(mesh, ax=ax).set_label(POWER_LABEL)
-        limits, limits_text = doppler_view_hz(analysis, row, result.noise_power, prf, options)
+        limits, limits_text = _doppler_view_hz(analysis, row, result.noise_power, prf, options)
         _mark_span(ax, limits, prf, which="y")
         if analysis.flash_edges_hz is not None:
             for i, edge in enumerate(analysis.flash_edges_hz):
@@ -249,7 +249,7 @@ def spectrum_figure(result, path, options=FigureParams()):
         if row["body_doppler_hz"] is not None:
             ax.axvline(row["body_doppler_hz"], color="C4", ls="-.", lw=1,
                        label=_body_label(row))
-        limits, limits_text = doppler_view_hz(analysis, row, result.noise_power, prf, options)
+        limits, limits_text = _doppler_view_hz(analysis, row, result.noise_power, prf, options)
         _mark_span(ax, limits, prf, which="x")
         if row["chopping_freq_hz"] is not None:
             _chopping_ticks(ax, row, limits)
