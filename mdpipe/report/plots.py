@@ -83,6 +83,12 @@ def _noise_per_bin(result, n_window):
     return max(noise_level_per_bin(result.noise_power, n_window), np.finfo(float).tiny)
 
 
+def _lines(draw, values, label, **style):
+    """One line per value (``ax.axvline`` or ``ax.axhline``), one legend entry for them all."""
+    for i, value in enumerate(values):
+        draw(value, label=None if i else label, **style)
+
+
 def _body_label(row):
     return f"body Doppler, mean ({round(row['body_doppler_hz'], 1) + 0.0:.1f} Hz)"  # + 0.0: no "-0.0"
 
@@ -193,9 +199,8 @@ def spectrogram_figure(result, path, options=FigureParams()):
         limits, limits_text = _doppler_view_hz(analysis, row, result.noise_power, prf, options)
         _mark_span(ax, limits, prf, which="y")
         if analysis.flash_edges_hz is not None:
-            for i, edge in enumerate(analysis.flash_edges_hz):
-                ax.axhline(edge, color="r", ls="--", lw=1.0, label=None if i else
-                           f"flash edges: +-tip Doppler ({row['tip_doppler_hz']:.4g} Hz)")
+            _lines(ax.axhline, analysis.flash_edges_hz, f"flash edges: +-tip Doppler ({row['tip_doppler_hz']:.4g} Hz)",
+                   color="r", ls="--", lw=1.0)
         if row["body_doppler_hz"] is not None:
             ax.axhline(row["body_doppler_hz"], color="C1", ls=":", lw=1.2,
                        label=_body_label(row))
@@ -239,13 +244,11 @@ def spectrum_figure(result, path, options=FigureParams()):
         threshold = _db(np.mean(spectrum.power), reference) + row["threshold_db"]
         ax.axhline(threshold, color="C3", ls=":", lw=1.2, label=f"paper threshold: spectrum mean + {row['threshold_db']:g} dB")
         if analysis.paper_extent_hz is not None and not row["aliased"]:
-            for i, edge in enumerate(analysis.paper_extent_hz):
-                ax.axvline(edge, color="C3", lw=1, label=None if i else
-                           f"paper extent: above the threshold (BW {row['doppler_bw_hz']:.4g} Hz)")
+            _lines(ax.axvline, analysis.paper_extent_hz,
+                   f"paper extent: above the threshold (BW {row['doppler_bw_hz']:.4g} Hz)", color="C3", lw=1)
         if analysis.flash_edges_hz is not None:
-            for i, edge in enumerate(analysis.flash_edges_hz):
-                ax.axvline(edge, color="C2", ls="--", lw=1, label=None if i else
-                           f"flash edges: +-tip Doppler (BW {row['doppler_bw_spectrogram_hz']:.4g} Hz)")
+            _lines(ax.axvline, analysis.flash_edges_hz, f"flash edges: +-tip Doppler "
+                   f"(BW {row['doppler_bw_spectrogram_hz']:.4g} Hz)", color="C2", ls="--", lw=1)
         if row["body_doppler_hz"] is not None:
             ax.axvline(row["body_doppler_hz"], color="C4", ls="-.", lw=1,
                        label=_body_label(row))
