@@ -285,11 +285,10 @@ def summary_figure(features, path, *, n_blades=2):
     of their own at their half-width; rows without a target are listed by file.
     """
     fig = plt.figure(figsize=(11, 6), layout="constrained")
-    grid = fig.add_gridspec(2, 3, width_ratios=(1, 5, 2.4), height_ratios=(8, 1))
+    grid = fig.add_gridspec(1, 3, width_ratios=(1, 5, 2.4))
     strip = fig.add_subplot(grid[0, 0])
     ax = fig.add_subplot(grid[0, 1], sharey=strip)
     key = _legend_axes(fig, grid[0, 2])
-    notes = _legend_axes(fig, grid[1, :])
     rate = features["chopping_freq_hz"].fillna(features["wingbeat_freq_hz"])
     width = features["micro_doppler_halfwidth_mps"]
     flashes = flashes_per_revolution(n_blades)
@@ -335,5 +334,5 @@ def summary_figure(features, path, *, n_blades=2):
     ax.grid(alpha=0.3, which="both")
     key.legend(*ax.get_legend_handles_labels(), **LEGEND)
     listed = ", ".join(no_target[:MAX_LISTED]) + (f" and {len(no_target) - MAX_LISTED} more" if len(no_target) > MAX_LISTED else "")
-    notes.text(0, 0.5, f"no moving target ({len(no_target)}): {listed or 'none'}", fontsize=8, va="center")
+    fig.supxlabel(f"no moving target ({len(no_target)}): {listed or 'none'}", fontsize=8, x=0.01, ha="left")
     _save(fig, path, "mdpipe folder summary")
