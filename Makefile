@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale batch paper evaluate clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale batch paper evaluate readme clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -39,7 +39,12 @@ data_samples/gull_flyby.h5: configs/samples/gull_flyby.yaml $(MDPIPE)
 data_samples/clutter_only.h5: configs/samples/clutter_only.yaml $(MDPIPE)
 	$(MDPIPE) simulate --config $< -o $@
 
-# Speed against error: each choice swept from the defaults, with the SNR breakdown (~1 min).
+# The README's table of output columns, from mdpipe/process/columns.py (a test fails when they differ).
+readme: $(MDPIPE)
+	$(BIN)/python -m mdpipe.process.columns --write-readme
+
+# Speed against error: each choice swept from the defaults, with the SNR breakdown (~1 min). bench.csv and
+# bench.png hold timings, which differ from run to run: not committed; snr_breakdown.csv is reproducible.
 bench: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_tradeoffs.py --out reports
 

@@ -12,7 +12,7 @@ from mdpipe import __version__
 from mdpipe.errors import MdpipeError
 from mdpipe.io import open_capture
 from mdpipe.io.radarlog import ATTRIBUTES
-from mdpipe.params import RANGE_WINDOWS, ProcessParams
+from mdpipe.params import RANGE_WINDOWS, FigureParams, ProcessParams
 
 PROGRESS_MIN_SAMPLES = 1 << 25
 
@@ -245,8 +245,10 @@ def info(capture, as_json, **options):
 @click.option("--stft-hop-s", type=click.FloatRange(min=0, min_open=True), help="Spectrogram hop [window / 4].")
 @click.option("--max-memory-gb", type=click.FloatRange(min=0, min_open=True), default=ProcessParams.max_memory_gb,
               show_default=True, help="Refuse a capture whose planned memory exceeds this (GiB).")
+@click.option("--doppler-limits", default="auto", show_default=True,
+              help="Doppler axis of the figures: auto (the occupied band), full (+-PRF/2) or LOW,HIGH in Hz.")
 @attribute_overrides
-def process(captures, out_dir, as_json, no_figures, **options):
+def process(captures, out_dir, as_json, no_figures, doppler_limits, **options):
     """Detect targets in each CAPTURE, measure their micro-Doppler features, call drone / bird / none.
 
     Writes <stem>.features.csv, <stem>.run.json and <stem>_range.png, _spectrogram.png, _spectrum.png
@@ -258,6 +260,7 @@ def process(captures, out_dir, as_json, no_figures, **options):
 
     reader = reader_options(options)
     params = ProcessParams(**{k: v for k, v in options.items() if k in ProcessParams.__dataclass_fields__})
+    figure_params = FigureParams.from_text(doppler_limits)
     out_dir.mkdir(parents=True, exist_ok=True)
     failed = 0
     for capture in captures:
@@ -272,8 +275,8 @@ def process(captures, out_dir, as_json, no_figures, **options):
 
                 plots.range_figure(result, stem.with_name(stem.name + "_range.png"))
                 if result.analyses:
-                    plots.spectrogram_figure(result, stem.with_name(stem.name + "_spectrogram.png"))
-                    plots.spectrum_figure(result, stem.with_name(stem.name + "_spectrum.png"))
+                    plots.spectrogram_figure(result, stem.with_name(stem.name + "_spectrogram.png"), figure_params)
+                    plots.spectrum_figure(result, stem.with_name(stem.name + "_spectrum.png"), figure_params)
             error_file = stem.with_name(stem.name + tables.ERROR_SUFFIX)
             if error_file.exists():
                 error_file.unlink()

@@ -11,3 +11,7 @@ class ParameterError(MdpipeError, ValueError):
 
 class CaptureFormatError(MdpipeError):
     """A capture file does not follow the Radarlog layout and cannot be read as one."""
+
+
+class PlatformError(MdpipeError):
+    """This platform lacks something an operation needs (e.g. ``os.pwrite`` on Windows)."""

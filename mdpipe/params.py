@@ -258,3 +258,48 @@ class ProcessParams:
 
 
 RANGE_WINDOWS = ("hann", "hamming", "blackman", "boxcar")
+
+
+DOPPLER_LIMIT_MODES = ("auto", "full")
+
+
+@dataclass(frozen=True)
+class FigureParams:
+    """Choices of the figures only (nothing measured depends on them).
+
+    Parameters
+    ----------
+    doppler_limits : str or (float, float)
+        Doppler axis of the spectrogram and spectrum figures: ``auto`` (the occupied band with a
+        margin, the unambiguous span marked), ``full`` (the whole span ``-PRF/2 .. PRF/2``), or
+        ``(low_hz, high_hz)``.
+    """
+
+    doppler_limits: object = "auto"
+
+    def __post_init__(self):
+        limits = self.doppler_limits
+        if isinstance(limits, str):
+            if limits not in DOPPLER_LIMIT_MODES:
+                raise ParameterError(f"doppler_limits={limits!r} must be auto, full or LOW,HIGH in Hz")
+            return
+        low, high = (float(v) for v in limits)
+        if not (np.isfinite(low) and np.isfinite(high) and low < high):
+            raise ParameterError(f"doppler_limits=({low:g}, {high:g}) must be finite with LOW < HIGH (Hz)")
+        object.__setattr__(self, "doppler_limits", (low, high))
+
+    @classmethod
+    def from_text(cls, text):
+        """Parse ``auto``, ``full`` or ``LOW,HIGH`` (Hz), as ``--doppler-limits`` takes it."""
+        text = text.strip()
+        if text in DOPPLER_LIMIT_MODES:
+            return cls(text)
+        parts = text.split(",")
+        try:
+            if len(parts) != 2:
+                raise ValueError
+            limits = tuple(float(p) for p in parts)
+        except ValueError:
+            raise ParameterError(f"--doppler-limits {text!r}: give auto, full or LOW,HIGH in Hz "
+                                 "(e.g. -500,800)") from None
+        return cls(limits)

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import h5py
 import numpy as np
 
-from mdpipe.errors import CaptureFormatError, ParameterError
+from mdpipe.errors import CaptureFormatError, ParameterError, PlatformError
 from mdpipe.outputs import publish
 from mdpipe.params import RADAR_LIMITS, RadarParams
 
@@ -557,6 +557,9 @@ class CaptureWriter:
     """
 
     def __init__(self, path, params, n_chirps, *, creator, truth=None, chunk_rows=64, overwrite=True):
+        if not hasattr(os, "pwrite"):
+            raise PlatformError("writing a capture needs os.pwrite, which this platform lacks (Windows): run "
+                                "mdpipe simulate on Linux, macOS or WSL (reading and processing do not need it)")
         self.path = os.fspath(path)
         self.params, self.n_chirps = params, int(n_chirps)
         self.chunk_rows = max(1, min(chunk_rows, self.n_chirps))

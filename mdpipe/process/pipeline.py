@@ -16,7 +16,12 @@ MIN_CHIRPS = 64
 
 @dataclass
 class CaptureResult:
-    """Rows (one per target, or one ``none`` row), the analyses behind them and the range statistics."""
+    """Rows (one per target, or one ``none`` row), the analyses behind them and the range statistics.
+
+    ``noise_power`` is the receiver noise per chirp and RX (V^2: the median moving power over the
+    gate), which is also that of each target's combined slow time (unit-norm RX weights);
+    ``process`` holds the :class:`mdpipe.params.ProcessParams` used.
+    """
 
     path: str
     params: object
@@ -25,6 +30,8 @@ class CaptureResult:
     detections: list
     analyses: list
     rows: list
+    noise_power: float
+    process: object
 
 
 def _target_signals(reader, stats, detections, process):
@@ -99,7 +106,8 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             row["notes"] = "; ".join([f"no moving target above the noise in {process.min_range_m:g}-"
                                       f"{process.max_range_m:g} m (strongest bin {strongest:.1f} dB < "
                                       f"{process.detection_db:g} dB)"] + capture_notes)
-            return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row])
+            return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row],
+                                 noise_power=noise, process=process)
         targets = _target_signals(reader, stats, detections, process)
         layout = reader.layout.describe()
     for index, (detection, (path_gates, signal, rx_gain_db)) in enumerate(zip(detections, targets)):
@@ -115,4 +123,5 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + capture_notes)
         rows.append(row)
         analyses.append(analysis)
-    return CaptureResult(str(path), params, layout, stats, detections, analyses, rows)
+    return CaptureResult(str(path), params, layout, stats, detections, analyses, rows, noise_power=noise,
+                         process=process)

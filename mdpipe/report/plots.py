@@ -1,6 +1,10 @@
-"""Figures a radar engineer expects: range profile, spectrogram, Doppler power spectrum, folder summary.
+"""Figures a radar engineer reads without help: range profile, spectrogram, Doppler power spectrum, folder summary.
 
-Doppler axes are in Hz with m/s on the opposite axis (paper sign: approaching positive).
+Conventions, the same as the tables': Doppler in Hz with the paper's sign (Eq. 2: positive
+approaching), range rate in m/s positive receding, both named on the axes; powers in dB relative
+to the receiver noise in the same bin (0 dB: the noise floor); every mark in a legend; constrained
+layout, so nothing is cut. The Doppler axis shows the occupied band (``FigureParams``) and says
+which part of the unambiguous span ``-PRF/2 .. PRF/2`` that is.
 """
 
 import matplotlib
@@ -9,122 +13,326 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from mdpipe import __version__  # noqa: E402
+from mdpipe.params import FigureParams  # noqa: E402
 from mdpipe.physics.radar import doppler_hz, range_rate_from_doppler_mps  # noqa: E402
+from mdpipe.physics.rotor import flashes_per_revolution  # noqa: E402
+from mdpipe.process import spectral  # noqa: E402
+from mdpipe.process.classify import DRONE_SPREAD_MPS  # noqa: E402
+from mdpipe.process.doppler import noise_level_per_bin  # noqa: E402
+from mdpipe.process.features import MAX_REV_PER_S, MIN_REV_PER_S  # noqa: E402
+from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ  # noqa: E402
 from mdpipe.report.tables import atomic_write  # noqa: E402
 
-DYNAMIC_RANGE_DB = 60.0
+DYNAMIC_RANGE_DB = 60.0      # colour scale: this far below the strongest cell, at most
+NOISE_SHOWN_DB = -10.0       # ... and no further below the noise
+DOPPLER_MARGIN = 0.25        # auto Doppler limits: the occupied band widened by this share on each side
+MIN_DOPPLER_VIEW_BINS = 40   # auto Doppler limits: at least this many spectrum bins wide
+SPECTROGRAM_TURNS = 8        # a drone's spectrogram shows this many rotor turns: the flashes stay readable
+CHOPPING_TICKS = 5           # chopping lines marked up to k = +-5 about the body Doppler
+MAX_LISTED = 6               # summary: captures without a target listed by name, at most
+DOPPLER_LABEL = "Doppler (Hz), + approaching"
+RANGE_RATE_LABEL = "range rate (m/s), + receding"
+POWER_LABEL = "dB re noise per bin"
+LEGEND = dict(fontsize=7, loc="upper right", bbox_to_anchor=(1, 1), borderaxespad=0.0, frameon=False)
 
 
 def _save(fig, path, description):
+    """PNG with no creation software or time and a description free of machine paths: reproducible bytes."""
     def write(tmp):
-        fig.savefig(tmp, format="png", dpi=110, metadata={"Software": f"mdpipe {__version__}",
-                                                            "Description": description})
+        fig.savefig(tmp, format="png", dpi=110, metadata={"Software": None, "Description": description})
     atomic_write(path, write)
     plt.close(fig)
 
 
-def _db(power, floor):
-    return 10 * np.log10(np.maximum(power, floor))
+def _name(path):
+    return str(path).replace("\\", "/").rsplit("/", 1)[-1]
 
 
-def _velocity_axis(ax, wavelength_m, *, which):
-    forward = lambda f: -range_rate_from_doppler_mps(f, wavelength_m=wavelength_m)  # noqa: E731
-    inverse = lambda v: doppler_hz(-v, wavelength_m=wavelength_m)  # noqa: E731
+def _db(power, reference):
+    return 10 * np.log10(np.maximum(power, np.finfo(float).tiny) / reference)
+
+
+def _range_rate_axis(ax, wavelength_m, *, which):
+    """The opposite axis in range rate (m/s, + receding), for a Doppler (Hz, + approaching) axis."""
+    functions = (lambda f: range_rate_from_doppler_mps(f, wavelength_m=wavelength_m),
+                 lambda v: doppler_hz(v, wavelength_m=wavelength_m))
     if which == "y":
-        ax.secondary_yaxis("right", functions=(forward, inverse)).set_ylabel("approach speed (m/s)")
+        ax.secondary_yaxis("right", functions=functions).set_ylabel(RANGE_RATE_LABEL)
     else:
-        ax.secondary_xaxis("top", functions=(forward, inverse)).set_xlabel("approach speed (m/s)")
+        ax.secondary_xaxis("top", functions=functions).set_xlabel(RANGE_RATE_LABEL)
+
+
+def _legend_axes(fig, cell):
+    """An empty panel beside a plot that holds its legend (the plot keeps its data clear)."""
+    ax = fig.add_subplot(cell)
+    ax.axis("off")
+    return ax
+
+
+def _target_panels(result):
+    """A figure with one row per target, a plot and its legend panel: (fig, [(ax, legend cell, analysis, row)])."""
+    n = len(result.analyses)
+    fig = plt.figure(figsize=(11, 3.9 * n), layout="constrained")
+    grid = fig.add_gridspec(n, 2, width_ratios=(4.2, 1))
+    return fig, [(fig.add_subplot(grid[i, 0]), grid[i, 1], analysis, row)
+                 for i, (analysis, row) in enumerate(zip(result.analyses, result.rows))]
+
+
+def _noise_per_bin(result, n_window):
+    """The receiver noise in one bin of an ``n_window``-chirp Hann spectrum of a target (V^2): the 0 dB of the figures."""
+    return max(noise_level_per_bin(result.noise_power, n_window), np.finfo(float).tiny)
+
+
+def _lines(draw, values, label, **style):
+    """One line per value (``ax.axvline`` or ``ax.axhline``), one legend entry for them all."""
+    for i, value in enumerate(values):
+        draw(value, label=None if i else label, **style)
+
+
+def _body_label(row):
+    return f"body Doppler, mean ({round(row['body_doppler_hz'], 1) + 0.0:.1f} Hz)"  # + 0.0: no "-0.0"
+
+
+def _panel_title(result, row, middle, limits_text):
+    return (f"{_name(result.path)}, target {row['target']} at {row['range_m']:.4g} m: {row['class']}\n{middle}\n"
+            f"Doppler: {limits_text}")
+
+
+def _doppler_view_hz(analysis, row, noise_power, prf_hz, options):
+    """Doppler limits (Hz) of a target's spectrogram and spectrum, and a phrase saying what they are.
+
+    ``auto``: where the dwell spectrum (smoothed as the analysis smooths it) stands 10 dB above the
+    noise per bin, widened by a quarter on each side and holding the body Doppler, the paper's extent
+    and the flash edges; the whole span when that band is aliased or empty. ``full``: the span.
+    """
+    half_span = prf_hz / 2
+    span_text = f"+-{half_span:.5g} Hz = 1/(2 Tp)"
+    if isinstance(options.doppler_limits, tuple):
+        low, high = options.doppler_limits
+        return (low, high), f"{low:.4g} to {high:.4g} Hz (given) of the unambiguous {span_text}"
+    spectrum = analysis.spectrum
+    if options.doppler_limits == "auto" and noise_power > 0:
+        band = spectral.occupied_band(spectrum, noise_level_per_bin(noise_power, len(spectrum.f_hz)),
+                                      smooth_hz=max(prf_hz / 200, 4 * spectrum.resolution_hz))
+        if not band.aliased and np.isfinite(band.low_hz):
+            marks = [band.low_hz, band.high_hz, *(analysis.paper_extent_hz or ()), *(analysis.flash_edges_hz or ())]
+            if row["body_doppler_hz"] is not None:
+                marks.append(row["body_doppler_hz"])
+            low, high = min(marks), max(marks)
+            margin = max(DOPPLER_MARGIN * (high - low), MIN_DOPPLER_VIEW_BINS / 2 * spectrum.resolution_hz)
+            low, high = max(low - margin, -half_span), min(high + margin, half_span)
+            if high - low < 0.9 * prf_hz:
+                return (low, high), f"{low:.4g} to {high:.4g} Hz (occupied band) of the unambiguous {span_text}"
+    return (-half_span, half_span), f"the whole unambiguous span {span_text}"
+
+
+def _mark_span(ax, limits, prf_hz, *, which):
+    """Shade what lies beyond the unambiguous span, when the view reaches past it."""
+    half_span = prf_hz / 2
+    span = ax.axvspan if which == "x" else ax.axhspan
+    drawn = False
+    for start, stop in ((limits[0], -half_span), (half_span, limits[1])):
+        if start < stop:
+            span(start, stop, color="0.6", alpha=0.4, hatch="//", lw=0,
+                 label=None if drawn else f"beyond the unambiguous span +-{half_span:.5g} Hz")
+            drawn = True
 
 
 def range_figure(result, path):
-    """Static (slow-time mean) and moving (MTI) power against range, with the gate and detections."""
-    stats, params = result.stats, result.params
-    fig, ax = plt.subplots(figsize=(8, 4))
-    floor = max(stats.moving_power.max(), stats.static_power.max()) * 10 ** (-DYNAMIC_RANGE_DB / 10) + 1e-30
-    ax.plot(stats.range_m, _db(stats.static_power, floor), label="static (slow-time mean)")
-    ax.plot(stats.range_m, _db(stats.moving_power, floor), label="moving (MTI)")
+    """Static and moving (MTI) power against range as steps, the detection threshold over the searched gate."""
+    stats, radar, process = result.stats, result.params, result.process
+    noise = max(result.noise_power, np.finfo(float).tiny)
+    fig, ax = plt.subplots(figsize=(9, 4.2), layout="constrained")
+    ax.plot(stats.range_m, _db(stats.static_power, noise), drawstyle="steps-mid", lw=1,
+            label="static: power of the slow-time mean")
+    ax.plot(stats.range_m, _db(stats.moving_power, noise), drawstyle="steps-mid", lw=1,
+            label="moving: power about the slow-time mean (MTI)")
     gate = stats.gate_range_m
-    ax.axvspan(gate[0], gate[-1], color="0.9", zorder=0, label="search gate")
-    for d in result.detections:
-        ax.axvline(d.range_m, color="r", ls="--", lw=1)
-        ax.annotate(f"{d.range_m:.1f} m\n{d.snr_db:.0f} dB", (d.range_m, ax.get_ylim()[1]), va="top", fontsize=8)
     farthest = max([d.range_m for d in result.detections], default=gate[-1] / 3)
-    ax.set_xlim(0, min(stats.range_m[-1], max(3 * farthest, 20 * params.range_bin_m)))
+    x_max = min(stats.range_m[-1], max(3 * farthest, 20 * radar.range_bin_m))
+    ax.set_xlim(0, x_max)
+    step = stats.range_m[1] - stats.range_m[0]
+    edges = (gate[0] - step / 2, gate[-1] + step / 2)  # outer edges of the gate's outer bins
+    ax.axvspan(0, edges[0], color="0.85", lw=0, zorder=0, label=f"not searched (gate {gate[0]:.3g}-{gate[-1]:.4g} m)")
+    if edges[1] < x_max:
+        ax.axvspan(edges[1], x_max, color="0.85", lw=0, zorder=0)
+    if process.range_m is None:
+        ax.hlines(process.detection_db, edges[0], min(edges[1], x_max), color="C3", ls="--", lw=1,
+                  label=f"detection threshold: noise + {process.detection_db:g} dB")
+    else:
+        ax.plot([], [], " ", label=f"range chosen with --range-m {process.range_m:g} (no detection)")
+    for index, d in enumerate(result.detections):
+        level = _db(stats.moving_power[d.bin], noise)
+        ax.plot(d.range_m, level, "v", color=f"C{index + 4}", ms=8, ls="none",
+                label=f"target {index}: {d.range_m:.4g} m, SNR {d.snr_db:.1f} dB")
     ax.set_xlabel("range (m)")
-    ax.set_ylabel("power per chirp (dB V$^2$)")
-    ax.set_title(f"Range profile ({params.range_bin_m:.3g} m bins)")
-    ax.legend(fontsize=8)
+    ax.set_ylabel(f"power per chirp and RX ({POWER_LABEL})")
+    found = f"{len(result.detections)} target(s)" if result.detections else "no target above the threshold"
+    ax.set_title(f"{_name(result.path)}: range profile ({radar.range_bin_m:.3g} m bins),\nmean over the whole "
+                 f"{radar.duration_s(stats.n_chirps):.3g} s dwell; {found}", fontsize=9)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1), borderaxespad=0.0)
     ax.grid(alpha=0.3)
-    _save(fig, path, f"range profile of {result.path}")
+    _save(fig, path, f"range profile of {_name(result.path)}")
 
 
-def spectrogram_figure(result, path):
-    """One panel per target: Doppler against time, flash edges marked when measured."""
-    analyses, rows = result.analyses, result.rows
-    fig, axes = plt.subplots(len(analyses), 1, figsize=(9, 3.6 * len(analyses)), squeeze=False)
-    for ax, analysis, row in zip(axes[:, 0], analyses, rows):
+def _time_view_s(spec, row):
+    """Time limits of a spectrogram and what they are: a drone's first turns, else the whole dwell."""
+    dwell = f"{row['dwell_s']:.3g} s dwell"
+    rate = row["rotation_rate_hz"]
+    if rate is not None and spec.t_s[0] + SPECTROGRAM_TURNS / rate < spec.t_s[-1]:
+        stop = spec.t_s[0] + SPECTROGRAM_TURNS / rate
+        return (spec.t_s[0], stop), f"{spec.t_s[0]:.3g}-{stop:.3g} s of the {dwell} ({SPECTROGRAM_TURNS} rotor turns)"
+    return (spec.t_s[0], spec.t_s[-1]), f"the whole {dwell}"
+
+
+def spectrogram_figure(result, path, options=FigureParams()):
+    """One panel per target: Doppler against time (dB re noise per bin), flash edges and body Doppler marked."""
+    fig, panels = _target_panels(result)
+    prf = result.params.prf_hz
+    for ax, key_cell, analysis, row in panels:
         spec = analysis.spectrogram
-        floor = spec.power.max() * 10 ** (-DYNAMIC_RANGE_DB / 10) + 1e-30
-        mesh = ax.pcolormesh(spec.t_s, spec.f_hz, _db(spec.power, floor), shading="auto", cmap="viridis")
-        fig.colorbar(mesh, ax=ax, pad=0.12).set_label("dB V$^2$")
+        level = _db(spec.power, _noise_per_bin(result, len(spec.f_hz)))
+        top = float(level.max())
+        mesh = ax.pcolormesh(spec.t_s, spec.f_hz, level, shading="nearest", cmap="viridis",
+                             vmin=max(top - DYNAMIC_RANGE_DB, NOISE_SHOWN_DB), vmax=top, rasterized=True)
+        fig.colorbar(mesh, ax=ax).set_label(POWER_LABEL)
+        limits, limits_text = _doppler_view_hz(analysis, row, result.noise_power, prf, options)
+        _mark_span(ax, limits, prf, which="y")
         if analysis.flash_edges_hz is not None:
-            for edge in analysis.flash_edges_hz:
-                ax.axhline(edge, color="w", ls="--", lw=0.8)
-        if row["rotation_rate_hz"] is not None:  # eight turns: the flashes stay readable
-            ax.set_xlim(spec.t_s[0], min(spec.t_s[-1], spec.t_s[0] + 8 / row["rotation_rate_hz"]))
-        ax.set_xlabel("time (s)")
-        ax.set_ylabel("Doppler (Hz)")
-        _velocity_axis(ax, row["wavelength_m"], which="y")
-        ax.set_title(f"target {row['target']} at {row['range_m']:.1f} m: {row['class']}; "
-                     f"window {spec.window_s * 1e3:.3g} ms, hop {spec.hop_s * 1e3:.3g} ms", fontsize=9)
-    _save(fig, path, f"spectrograms of {result.path}")
+            _lines(ax.axhline, analysis.flash_edges_hz, f"flash edges: +-tip Doppler ({row['tip_doppler_hz']:.4g} Hz)",
+                   color="r", ls="--", lw=1.0)
+        if row["body_doppler_hz"] is not None:
+            ax.axhline(row["body_doppler_hz"], color="C1", ls=":", lw=1.2,
+                       label=_body_label(row))
+        times, time_text = _time_view_s(spec, row)
+        ax.set_xlim(*times)
+        ax.set_ylim(*limits)
+        ax.set_xlabel("time from the start of the capture (s)")
+        ax.set_ylabel(DOPPLER_LABEL)
+        _range_rate_axis(ax, row["wavelength_m"], which="y")
+        ax.set_title(_panel_title(result, row, f"time: {time_text}; Hann window {spec.window_s * 1e3:.3g} ms, "
+                                  f"hop {spec.hop_s * 1e3:.3g} ms", limits_text), fontsize=8.5)
+        handles, labels = ax.get_legend_handles_labels()
+        key = _legend_axes(fig, key_cell)
+        if handles:
+            key.legend(handles, labels, **LEGEND)
+        else:
+            key.text(0, 1, "no flash edges or body line\nmeasured for this target", fontsize=7, va="top")
+    _save(fig, path, f"spectrograms of {_name(result.path)}")
 
 
-def spectrum_figure(result, path):
-    """One panel per target: dwell power spectrum, the paper's threshold and extent, flash edges, lines."""
-    fig, axes = plt.subplots(len(result.analyses), 1, figsize=(9, 3.6 * len(result.analyses)), squeeze=False)
-    for ax, analysis, row in zip(axes[:, 0], result.analyses, result.rows):
+def _chopping_ticks(ax, row, limits):
+    """Short ticks at the top at body Doppler + k f_chop, |k| <= CHOPPING_TICKS, within the view."""
+    centre = row["body_doppler_hz"] or 0.0
+    lines = centre + row["chopping_freq_hz"] * np.arange(-CHOPPING_TICKS, CHOPPING_TICKS + 1)
+    lines = lines[(lines >= limits[0]) & (lines <= limits[1])]
+    ax.vlines(lines, 0.9, 1.0, transform=ax.get_xaxis_transform(), color="C1", lw=1.5,
+              label=f"chopping lines: body Doppler + k x {row['chopping_freq_hz']:.4g} Hz, |k| <= {CHOPPING_TICKS}")
+
+
+def spectrum_figure(result, path, options=FigureParams()):
+    """One panel per target: dwell power spectrum (dB re noise per bin) and every measured mark on it."""
+    fig, panels = _target_panels(result)
+    prf = result.params.prf_hz
+    for ax, key_cell, analysis, row in panels:
         spectrum = analysis.spectrum
-        floor = spectrum.power.max() * 10 ** (-(DYNAMIC_RANGE_DB + 20) / 10) + 1e-30
-        ax.plot(spectrum.f_hz, _db(spectrum.power, floor), lw=0.6, color="C0")
-        threshold = 10 * np.log10(np.mean(spectrum.power)) + row["threshold_db"]
-        ax.axhline(threshold, color="C3", ls=":", lw=1, label=f"mean + {row['threshold_db']:g} dB")
+        reference = _noise_per_bin(result, len(spectrum.f_hz))
+        level = _db(spectrum.power, reference)
+        ax.plot(spectrum.f_hz, level, lw=0.6, color="C0",
+                label=f"dwell power spectrum (Hann, {len(spectrum.f_hz)} chirps, {spectrum.resolution_hz:.3g} Hz bins)")
+        ax.axhline(0.0, color="0.4", lw=0.8, label="receiver noise per bin (0 dB)")
+        threshold = _db(np.mean(spectrum.power), reference) + row["threshold_db"]
+        ax.axhline(threshold, color="C3", ls=":", lw=1.2, label=f"paper threshold: spectrum mean + {row['threshold_db']:g} dB")
         if analysis.paper_extent_hz is not None and not row["aliased"]:
-            for edge in analysis.paper_extent_hz:
-                ax.axvline(edge, color="C3", lw=1)
+            _lines(ax.axvline, analysis.paper_extent_hz,
+                   f"paper extent: above the threshold (BW {row['doppler_bw_hz']:.4g} Hz)", color="C3", lw=1)
         if analysis.flash_edges_hz is not None:
-            for edge in analysis.flash_edges_hz:
-                ax.axvline(edge, color="C2", ls="--", lw=1)
-            ax.plot([], [], color="C2", ls="--", label="flash edges (tip Doppler)")
+            _lines(ax.axvline, analysis.flash_edges_hz, f"flash edges: +-tip Doppler "
+                   f"(BW {row['doppler_bw_spectrogram_hz']:.4g} Hz)", color="C2", ls="--", lw=1)
+        if row["body_doppler_hz"] is not None:
+            ax.axvline(row["body_doppler_hz"], color="C4", ls="-.", lw=1,
+                       label=_body_label(row))
+        limits, limits_text = _doppler_view_hz(analysis, row, result.noise_power, prf, options)
+        _mark_span(ax, limits, prf, which="x")
         if row["chopping_freq_hz"] is not None:
-            centre = row["body_doppler_hz"] or 0.0
-            lines = centre + row["chopping_freq_hz"] * np.arange(-8, 9)
-            ax.plot(lines, np.full(lines.shape, ax.get_ylim()[1]), "v", color="C1", ms=4,
-                    label=f"chopping lines, {row['chopping_freq_hz']:.1f} Hz apart")
-        ax.set_xlabel("Doppler (Hz)")
-        ax.set_ylabel("power (dB V$^2$)")
-        _velocity_axis(ax, row["wavelength_m"], which="x")
-        state = "aliased" if row["aliased"] else "not aliased"
-        ax.set_title(f"target {row['target']}: power spectrum over {row['dwell_s']:.3g} s ({state})", fontsize=9)
-        ax.legend(fontsize=7, loc="lower right")
+            _chopping_ticks(ax, row, limits)
+        ax.set_xlim(*limits)
+        bottom = max(float(level.max()) - DYNAMIC_RANGE_DB - 20, NOISE_SHOWN_DB)
+        ax.set_ylim(bottom, float(level.max()) + 8)
+        ax.set_xlabel(DOPPLER_LABEL)
+        ax.set_ylabel(f"power ({POWER_LABEL})")
+        _range_rate_axis(ax, row["wavelength_m"], which="x")
+        state = "aliased: bandwidth withheld" if row["aliased"] else "not aliased"
+        ax.set_title(_panel_title(result, row, f"power spectrum over the whole {row['dwell_s']:.3g} s dwell ({state})",
+                                  limits_text), fontsize=8.5)
         ax.grid(alpha=0.3)
-    _save(fig, path, f"Doppler power spectra of {result.path}")
+        _legend_axes(fig, key_cell).legend(*ax.get_legend_handles_labels(), **LEGEND)
+    _save(fig, path, f"Doppler power spectra of {_name(result.path)}")
 
 
-def summary_figure(features, path):
-    """Every target of a folder: micro-Doppler half-width (m/s) against its periodicity rate (Hz), by class."""
-    fig, ax = plt.subplots(figsize=(7, 5))
+def _label(row):
+    aliased = " (aliased: at least)" if row["aliased"] in (True, "True") else ""
+    return f"{_name(row['file']).removesuffix('.h5')} #{int(row['target'])}{aliased}"
+
+
+def summary_figure(features, path, *, n_blades=2):
+    """Every target of a folder: micro-Doppler half-width (m/s) against its periodicity (Hz), with the class regions.
+
+    The regions are those of :mod:`mdpipe.process.classify`: drone above ``DRONE_SPREAD_MPS`` or with
+    blade flashes (chopping frequencies searched from ``MIN_REV_PER_S`` to ``MAX_REV_PER_S`` rev/s
+    times the flashes per revolution of ``n_blades``); bird with a wingbeat (searched from
+    ``MIN_WINGBEAT_HZ`` to ``MAX_WINGBEAT_HZ``) below it. Rows without a periodicity sit in a strip
+    of their own at their half-width; rows without a target are listed by file.
+    """
+    fig = plt.figure(figsize=(11, 6), layout="constrained")
+    grid = fig.add_gridspec(1, 3, width_ratios=(1, 5, 2.4))
+    strip = fig.add_subplot(grid[0, 0])
+    ax = fig.add_subplot(grid[0, 1], sharey=strip)
+    key = _legend_axes(fig, grid[0, 2])
     rate = features["chopping_freq_hz"].fillna(features["wingbeat_freq_hz"])
-    for label, marker in (("drone", "^"), ("bird", "o"), ("none", "x")):
-        chosen = features["class"] == label
-        ax.scatter(rate[chosen].fillna(0.1), features.loc[chosen, "micro_doppler_halfwidth_mps"].fillna(0.1),
-                   marker=marker, label=f"{label} ({int(chosen.sum())})")
+    width = features["micro_doppler_halfwidth_mps"]
+    flashes = flashes_per_revolution(n_blades)
+    chop = (flashes * MIN_REV_PER_S, flashes * MAX_REV_PER_S)
+    x_lim = (min(0.1, rate.min() / 2 if rate.notna().any() else 0.1), max(3000.0, rate.max() * 2 if rate.notna().any() else 0))
+    y_lim = (min(0.05, width.min() / 2 if width.notna().any() else 0.05), max(200.0, width.max() * 2 if width.notna().any() else 0))
+    ax.axhspan(DRONE_SPREAD_MPS, y_lim[1], color="C0", alpha=0.08, lw=0, label=f"drone: half-width > {DRONE_SPREAD_MPS:g} m/s")
+    ax.fill_between(chop, y_lim[0], DRONE_SPREAD_MPS, color="C0", alpha=0.16, lw=0,
+                    label=f"drone: blade flashes, chopping {chop[0]:g}-{chop[1]:g} Hz ({n_blades} blades)")
+    ax.fill_between((MIN_WINGBEAT_HZ, MAX_WINGBEAT_HZ), y_lim[0], DRONE_SPREAD_MPS, color="C2", alpha=0.16, lw=0,
+                    label=f"bird: wingbeat {MIN_WINGBEAT_HZ:g}-{MAX_WINGBEAT_HZ:g} Hz, half-width <= {DRONE_SPREAD_MPS:g} m/s")
+    ax.axhline(DRONE_SPREAD_MPS, color="k", ls="--", lw=1, label=f"half-width threshold {DRONE_SPREAD_MPS:g} m/s")
+    strip.axhline(DRONE_SPREAD_MPS, color="k", ls="--", lw=1)
+    markers = {"drone": ("^", "C0"), "bird": ("o", "C2"), "none": ("x", "C3")}
+    no_target = []
+    for label, (marker, colour) in markers.items():
+        chosen = (features["class"] == label).to_numpy()
+        placed = chosen & rate.notna().to_numpy()
+        alone = chosen & rate.isna().to_numpy() & width.notna().to_numpy()
+        ax.scatter(rate[placed], width[placed], marker=marker, color=colour, zorder=3,
+                   label=f"{label} ({int(chosen.sum())})")
+        strip.scatter(np.zeros(int(alone.sum())), width[alone], marker=marker, color=colour, zorder=3)
+        for i in np.flatnonzero(placed):
+            ax.annotate(_label(features.iloc[i]), (rate.iloc[i], width.iloc[i]), xytext=(4, 3),
+                        textcoords="offset points", fontsize=7)
+        for i in np.flatnonzero(alone):
+            strip.annotate(_label(features.iloc[i]), (0, width.iloc[i]), xytext=(0, 5), textcoords="offset points",
+                           fontsize=6.5, ha="center")
+        no_target += [_name(f) for f in features.loc[chosen & width.isna().to_numpy(), "file"]]
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("periodicity: chopping or wingbeat frequency (Hz)")
-    ax.set_ylabel("micro-Doppler half-width (m/s)")
-    ax.set_title(f"{len(features)} targets")
-    ax.legend()
+    ax.set_xlim(*x_lim)
+    ax.set_ylim(*y_lim)
+    strip.set_xlim(-1, 1)
+    strip.set_xticks([])
+    strip.set_xlabel("no periodicity")
+    strip.set_ylabel("micro-Doppler half-width (m/s)")
+    strip.grid(alpha=0.3, axis="y", which="both")
+    ax.tick_params(labelleft=False)
+    ax.set_xlabel("periodicity: chopping frequency or wingbeat (Hz)")
+    ax.set_title(f"{len(features)} rows from {features['file'].nunique()} captures: class regions of "
+                 "mdpipe.process.classify", fontsize=9)
     ax.grid(alpha=0.3, which="both")
+    key.legend(*ax.get_legend_handles_labels(), **LEGEND)
+    listed = ", ".join(no_target[:MAX_LISTED]) + (f" and {len(no_target) - MAX_LISTED} more" if len(no_target) > MAX_LISTED else "")
+    fig.supxlabel(f"no moving target ({len(no_target)}): {listed or 'none'}", fontsize=8, x=0.01, ha="left")
     _save(fig, path, "mdpipe folder summary")

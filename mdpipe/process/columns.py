@@ -1,0 +1,184 @@
+"""What every column of a feature row (``features.csv``, ``--json``) means: name, unit, meaning, when null.
+
+The pipeline (:func:`mdpipe.process.pipeline.process_capture`) is the source of the keys; this
+module defines them, one entry each, and renders the README's column table from them. A status
+column ``<feature>_status`` (``ok`` or a reason code of ``mdpipe.process.validity.STATUS_CODES``)
+is defined by a generic rule for any defined feature. ``python -m mdpipe.process.columns
+--write-readme`` rewrites the table between the README's markers; ``--check`` fails on drift.
+
+Signs, as in the paper (Eq. 2): Doppler positive approaching; velocities positive receding.
+"""
+
+import argparse
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+STATUS_SUFFIX = "_status"
+START, END = "<!-- columns:start -->", "<!-- columns:end -->"
+ROOT = Path(__file__).resolve().parents[2]
+KEY_CAPTURES = ("phantom4_xband.h5", "clutter_only.h5")  # a target's row and a `none` row
+NO_TARGET = "no target (the `none` row of a capture without detections)"
+NO_ROTATION = "no target; no periodic blade flashes (or two periods fit the flash times; or the dwell holds fewer than two)"
+NO_EDGES = f"{NO_ROTATION}; aliased; no flash frame with both Doppler edges inside the span"
+NOT_BANDWIDTH = "no target; aliased; nothing `threshold_db` above the spectrum's mean"
+NO_BODY = "no target; no body line 6 dB above the next line of its frame (rotating parts only, or phase-locked rotors)"
+NO_WINGBEAT = ("no target; blade flashes found (no wingbeat searched); no wingbeat of autocorrelation >= 0.2 between "
+               "0.3 and 20 Hz with two cycles in the dwell")
+
+
+@dataclass(frozen=True)
+class Column:
+    """One output column: its name, unit (``-`` for none), meaning and when it is null."""
+
+    name: str
+    unit: str
+    meaning: str
+    null_when: str
+
+
+COLUMNS = (
+    Column("file", "-", "the capture, as given on the command line", "never"),
+    Column("target", "-", "index of the target in the capture, strongest detection first (0, 1, ...)", NO_TARGET),
+    Column("class", "-", "`drone`, `bird` or `none` (rules in `mdpipe/process/classify.py`; the reason opens `notes`)",
+           "never"),
+    Column("range_m", "m", "range of the detection's peak bin (with `--range-m`: the gate bin nearest the range asked)",
+           NO_TARGET),
+    Column("range_bin", "-", "that bin's index on the (zero-padded) range-FFT grid", NO_TARGET),
+    Column("range_min_m", "m", "nearest range bin the tracker followed the target through", NO_TARGET),
+    Column("range_max_m", "m", "farthest range bin the tracker followed the target through", NO_TARGET),
+    Column("rx_gain_db", "dB", "SNR gain of the coherent RX combining over one RX, in the bin where the target spent "
+           "most chunks (10 log10 C for a point target on C RX)", NO_TARGET),
+    Column("snr_db", "dB", "SNR per chirp in the target's bin after RX combining: (moving power - noise) / noise, the "
+           "noise being the median moving power over the gate; `-inf` when the bin holds no more than the noise",
+           NO_TARGET),
+    Column("doppler_bw_hz", "Hz", "the paper's Doppler bandwidth: extent of the dwell power spectrum above its mean by "
+           "`threshold_db`", NOT_BANDWIDTH),
+    Column("doppler_bw_mps", "m/s", "`doppler_bw_hz` as a velocity spread, times lambda / 2", NOT_BANDWIDTH),
+    Column("doppler_low_hz", "Hz, + approaching", "lower edge of that extent", NOT_BANDWIDTH),
+    Column("doppler_high_hz", "Hz, + approaching", "upper edge of that extent", NOT_BANDWIDTH),
+    Column("doppler_bw_spectrogram_hz", "Hz", "distance between the blade-flash Doppler edges (half amplitude of the "
+           "flash frames of a spectrogram a quarter chopping period long): twice the tip Doppler", NO_EDGES),
+    Column("chopping_freq_hz", "Hz", "blade flashes per second: rotation rate times the flashes per revolution "
+           "(N for even N blades, 2N for odd)", NO_ROTATION),
+    Column("rotation_rate_hz", "rev/s", "rotor rotation rate, `chopping_freq_hz` / flashes per revolution",
+           NO_ROTATION),
+    Column("rotation_period_s", "s", "1 / `rotation_rate_hz`", NO_ROTATION),
+    Column("flash_period_s", "s", "1 / `chopping_freq_hz` (T_c)", NO_ROTATION),
+    Column("blade_length_m", "m", "blade length r from Eq. 6 with the tip Doppler, the rotation rate and "
+           "`elevation_deg`", f"{NO_EDGES}; the tips span too few rotation harmonics; |`elevation_deg`| > 80"),
+    Column("tip_doppler_hz", "Hz", "blade-tip Doppler 2 Omega r cos(beta) / lambda: half of "
+           "`doppler_bw_spectrogram_hz`", NO_EDGES),
+    Column("body_doppler_hz", "Hz, + approaching", "mean Doppler of the body line over the dwell", NO_BODY),
+    Column("body_velocity_mps", "m/s, + receding", "mean body range rate, -lambda `body_doppler_hz` / 2", NO_BODY),
+    Column("wingbeat_freq_hz", "Hz", "wingbeat frequency: period of the autocorrelation of the detrended "
+           "log-spectrogram", NO_WINGBEAT),
+    Column("wingbeat_period_s", "s", "1 / `wingbeat_freq_hz`", NO_WINGBEAT),
+    Column("micro_doppler_halfwidth_mps", "m/s", "largest |Doppler| of the band 10 dB above the noise, body removed, "
+           "as a speed (lambda f / 2); when aliased, half the unambiguous span: a lower bound",
+           "no target; no band above the noise"),
+    Column("aliased", "true/false", "the micro-Doppler fills the unambiguous span 1/Tp (band over 90 % of it or at both "
+           "ends, or the brightest frames of a 64-chirp spectrogram fill it): bandwidths and blade length withheld",
+           NO_TARGET),
+    Column("stft_window_s", "s", "window of the figure's spectrogram, whole chirps: `--stft-window-s`, else a quarter "
+           "chopping period, else min(64 ms, 0.2 / wingbeat), else 32 ms", NO_TARGET),
+    Column("stft_hop_s", "s", "hop of that spectrogram: `--stft-hop-s`, else a quarter window", NO_TARGET),
+    Column("elevation_deg", "deg", "elevation beta of the rotor plane used in Eq. 6 (`--elevation-deg`)", "never"),
+    Column("n_blades", "-", "blades per rotor N used (`--blades`)", "never"),
+    Column("threshold_db", "dB", "the paper's bandwidth threshold above the spectrum's mean (`--threshold-db`)", "never"),
+    Column("wavelength_m", "m", "wavelength at the sweep centre, used for every Doppler-velocity conversion", "never"),
+    Column("prf_hz", "Hz", "chirp rate 1/Tp: the slow-time sample rate and the unambiguous Doppler span", "never"),
+    Column("dwell_s", "s", "capture duration, chirps x Tp", "never"),
+    Column("mdpipe_version", "-", "version of mdpipe that made the row", "never"),
+    Column("notes", "-", "`; `-separated: the class's reason, why each withheld feature is withheld, warnings about "
+           "the capture (clipping)", "never"),
+)
+BY_NAME = {column.name: column for column in COLUMNS}
+
+
+def status_codes():
+    """``STATUS_CODES`` of :mod:`mdpipe.process.validity` (code -> meaning), or an empty dict before it exists."""
+    try:
+        from mdpipe.process.validity import STATUS_CODES
+    except ImportError:
+        return {}
+    return dict(STATUS_CODES)
+
+
+def definition(key):
+    """The :class:`Column` of ``key``; a ``<feature>_status`` key of a defined feature by the generic rule.
+
+    Raises
+    ------
+    KeyError
+        For a key with no definition (naming the module to add it to).
+    """
+    if key in BY_NAME:
+        return BY_NAME[key]
+    feature = key[:-len(STATUS_SUFFIX)] if key.endswith(STATUS_SUFFIX) else None
+    if feature in BY_NAME:
+        return Column(key, "-", f"`ok` when `{feature}` is reported, else the code of why it is not "
+                      "(see the status codes below)", "never")
+    raise KeyError(f"column {key!r} has no definition in mdpipe/process/columns.py")
+
+
+def row_keys(captures=None):
+    """Keys of processed rows, in the pipeline's order: a target's row and a ``none`` row (union, first seen first)."""
+    from mdpipe.params import ProcessParams
+    from mdpipe.process.pipeline import process_capture
+
+    keys = {}
+    for capture in captures or [ROOT / "data_samples" / name for name in KEY_CAPTURES]:
+        for row in process_capture(capture, ProcessParams()).rows:
+            keys.update(dict.fromkeys(row))
+    return list(keys)
+
+
+def _cell(text):
+    return text.replace("|", "\\|")
+
+
+def markdown_table(keys):
+    """The README's column table (markdown) for rows with ``keys``, and the status codes when there are any."""
+    lines = ["| column | unit | meaning | null when |", "|---|---|---|---|"]
+    lines += [f"| `{c.name}` | {_cell(c.unit)} | {_cell(c.meaning)} | {_cell(c.null_when)} |"
+              for c in map(definition, keys)]
+    codes = status_codes()
+    if any(key.endswith(STATUS_SUFFIX) for key in keys) and codes:
+        lines += ["", "| status code | meaning |", "|---|---|"]
+        lines += [f"| `{code}` | {_cell(str(meaning))} |" for code, meaning in codes.items()]
+    return "\n".join(lines) + "\n"
+
+
+def replace_block(text, table):
+    """``text`` with everything between the column markers replaced by ``table``."""
+    if START not in text or END not in text:
+        raise ValueError(f"the README has no {START} ... {END} block")
+    head, rest = text.split(START, 1)
+    return f"{head}{START}\n{table}{END}{rest.split(END, 1)[1]}"
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m mdpipe.process.columns", description=__doc__.split("\n")[0])
+    parser.add_argument("--write-readme", action="store_true", help="rewrite the README's column table")
+    parser.add_argument("--check", action="store_true", help="exit 1 when the README's table differs")
+    parser.add_argument("--readme", type=Path, default=ROOT / "README.md")
+    args = parser.parse_args(argv)
+    table = markdown_table(row_keys())
+    if not (args.write_readme or args.check):
+        sys.stdout.write(table)
+        return 0
+    text = args.readme.read_text()
+    updated = replace_block(text, table)
+    if args.check:
+        if updated != text:
+            print(f"{args.readme}: the column table differs from mdpipe/process/columns.py; run "
+                  "python -m mdpipe.process.columns --write-readme", file=sys.stderr)
+            return 1
+        return 0
+    args.readme.write_text(updated)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
