@@ -19,12 +19,7 @@ START, END = "<!-- columns:start -->", "<!-- columns:end -->"
 ROOT = Path(__file__).resolve().parents[2]
 KEY_CAPTURES = ("phantom4_xband.h5", "clutter_only.h5")  # a target's row and a `none` row
 NO_TARGET = "no target (the `none` row of a capture without detections)"
-NO_ROTATION = "no target; no periodic blade flashes (or two periods fit the flash times; or the dwell holds fewer than two)"
-NO_EDGES = f"{NO_ROTATION}; aliased; no flash frame with both Doppler edges inside the span"
-NOT_BANDWIDTH = "no target; aliased; nothing `threshold_db` above the spectrum's mean"
-NO_BODY = "no target; no body line 6 dB above the next line of its frame (rotating parts only, or phase-locked rotors)"
-NO_WINGBEAT = ("no target; blade flashes found (no wingbeat searched); no wingbeat of autocorrelation >= 0.2 between "
-               "0.3 and 20 Hz with two cycles in the dwell")
+STATUS = "its `_status` column says why (codes below; with `assumed_blades` the value is given, resting on an assumed N)"
 
 
 @dataclass(frozen=True)
@@ -50,41 +45,47 @@ COLUMNS = (
     Column("rx_gain_db", "dB", "SNR gain of the coherent RX combining over one RX, in the bin where the target spent "
            "most chunks (10 log10 C for a point target on C RX)", NO_TARGET),
     Column("snr_db", "dB", "SNR per chirp in the target's bin after RX combining: (moving power - noise) / noise, the "
-           "noise being the median moving power over the gate; `-inf` when the bin holds no more than the noise",
-           NO_TARGET),
-    Column("doppler_bw_hz", "Hz", "the paper's Doppler bandwidth: extent of the dwell power spectrum above its mean by "
-           "`threshold_db`", NOT_BANDWIDTH),
-    Column("doppler_bw_mps", "m/s", "`doppler_bw_hz` as a velocity spread, times lambda / 2", NOT_BANDWIDTH),
-    Column("doppler_low_hz", "Hz, + approaching", "lower edge of that extent", NOT_BANDWIDTH),
-    Column("doppler_high_hz", "Hz, + approaching", "upper edge of that extent", NOT_BANDWIDTH),
+           "noise being the median moving power over the gate", f"{NO_TARGET}; see `snr_db_status`"),
+    Column("micro_doppler_halfwidth_mps", "m/s", "half-width of the band 10 dB above the noise, about its centre "
+           "(the body line when one stands out), as a speed (lambda f / 2); when aliased half the unambiguous span, a "
+           "lower bound (status `aliased`)", STATUS),
+    Column("doppler_bw_hz", "Hz", "the paper's Doppler bandwidth: extent of the power spectrum above its mean by "
+           "`threshold_db`, on 0.25 s segments of the body-demodulated echo (median of the segments' edges)", STATUS),
+    Column("doppler_bw_mps", "m/s", "`doppler_bw_hz` as a velocity spread, times lambda / 2", STATUS),
+    Column("doppler_low_hz", "Hz, + approaching", "lower edge of that extent", STATUS),
+    Column("doppler_high_hz", "Hz, + approaching", "upper edge of that extent", STATUS),
+    Column("chopping_freq_hz", "Hz", "spacing of the rotor line comb, N f_rot (Eq. 5; the median over the rotors "
+           "resolved)", STATUS),
+    Column("rotation_rate_hz", "rev/s", "rotation rate: the median of `rotor_rates_hz` (status `assumed_blades` when "
+           "N was neither given nor told by the echo)", STATUS),
+    Column("rotation_period_s", "s", "1 / `rotation_rate_hz`", STATUS),
+    Column("flash_period_s", "s", "time between blade flashes, 1 / (flashes per revolution x `rotation_rate_hz`): N "
+           "flashes a turn for even N, 2N for odd", STATUS),
+    Column("rotor_rates_hz", "rev/s", "rate of each rotor resolved in the line combs (`;`-separated in CSV, a list in "
+           "JSON), ascending", STATUS),
     Column("doppler_bw_spectrogram_hz", "Hz", "distance between the blade-flash Doppler edges (half amplitude of the "
-           "flash frames of a spectrogram a quarter chopping period long): twice the tip Doppler", NO_EDGES),
-    Column("chopping_freq_hz", "Hz", "blade flashes per second: rotation rate times the flashes per revolution "
-           "(N for even N blades, 2N for odd)", NO_ROTATION),
-    Column("rotation_rate_hz", "rev/s", "rotor rotation rate, `chopping_freq_hz` / flashes per revolution",
-           NO_ROTATION),
-    Column("rotation_period_s", "s", "1 / `rotation_rate_hz`", NO_ROTATION),
-    Column("flash_period_s", "s", "1 / `chopping_freq_hz` (T_c)", NO_ROTATION),
-    Column("blade_length_m", "m", "blade length r from Eq. 6 with the tip Doppler, the rotation rate and "
-           "`elevation_deg`", f"{NO_EDGES}; the tips span too few rotation harmonics; |`elevation_deg`| > 80"),
+           "flash frames of a spectrogram a quarter chopping period long): twice the tip Doppler", STATUS),
     Column("tip_doppler_hz", "Hz", "blade-tip Doppler 2 Omega r cos(beta) / lambda: half of "
-           "`doppler_bw_spectrogram_hz`", NO_EDGES),
-    Column("body_doppler_hz", "Hz, + approaching", "mean Doppler of the body line over the dwell", NO_BODY),
-    Column("body_velocity_mps", "m/s, + receding", "mean body range rate, -lambda `body_doppler_hz` / 2", NO_BODY),
+           "`doppler_bw_spectrogram_hz`", STATUS),
+    Column("blade_length_m", "m", "blade length r from Eq. 6 with the tip Doppler, the rotation rate and "
+           "`elevation_deg`", STATUS),
+    Column("body_velocity_mps", "m/s, + receding", "median body range rate over the dwell, -lambda f_body / 2", STATUS),
+    Column("body_doppler_hz", "Hz, + approaching", "median Doppler of the body line over the dwell", STATUS),
     Column("wingbeat_freq_hz", "Hz", "wingbeat frequency: period of the autocorrelation of the detrended "
-           "log-spectrogram", NO_WINGBEAT),
-    Column("wingbeat_period_s", "s", "1 / `wingbeat_freq_hz`", NO_WINGBEAT),
-    Column("micro_doppler_halfwidth_mps", "m/s", "largest |Doppler| of the band 10 dB above the noise, body removed, "
-           "as a speed (lambda f / 2); when aliased, half the unambiguous span: a lower bound",
-           "no target; no band above the noise"),
+           "log-spectrogram", STATUS),
+    Column("wingbeat_period_s", "s", "1 / `wingbeat_freq_hz`", STATUS),
     Column("aliased", "true/false", "the micro-Doppler fills the unambiguous span 1/Tp (band over 90 % of it or at both "
            "ends, or the brightest frames of a 64-chirp spectrogram fill it): bandwidths and blade length withheld",
            NO_TARGET),
+    Column("n_rotors", "-", "rotors resolved in the line combs (rotors at equal rates count as one)", STATUS),
+    Column("n_blades", "-", "blades per rotor N behind `rotation_rate_hz`: given (`--blades`), measured from the echo, "
+           "or assumed (see `n_blades_source`)", "no rotation measured and `--blades auto`"),
+    Column("n_blades_source", "-", "`given` (`--blades N`), `measured` (blade imbalance lines) or `assumed` (2, or 3 "
+           "when the flashes tell N is odd)", "no rotation measured and `--blades auto`"),
     Column("stft_window_s", "s", "window of the figure's spectrogram, whole chirps: `--stft-window-s`, else a quarter "
            "chopping period, else min(64 ms, 0.2 / wingbeat), else 32 ms", NO_TARGET),
     Column("stft_hop_s", "s", "hop of that spectrogram: `--stft-hop-s`, else a quarter window", NO_TARGET),
     Column("elevation_deg", "deg", "elevation beta of the rotor plane used in Eq. 6 (`--elevation-deg`)", "never"),
-    Column("n_blades", "-", "blades per rotor N used (`--blades`)", "never"),
     Column("threshold_db", "dB", "the paper's bandwidth threshold above the spectrum's mean (`--threshold-db`)", "never"),
     Column("wavelength_m", "m", "wavelength at the sweep centre, used for every Doppler-velocity conversion", "never"),
     Column("prf_hz", "Hz", "chirp rate 1/Tp: the slow-time sample rate and the unambiguous Doppler span", "never"),

@@ -28,7 +28,8 @@ import numpy as np
 
 from mdpipe.process.doppler import noise_level_per_bin, periodic_hann
 
-MIN_CHOP_HZ = 20.0           # 2 blades at 10 rev/s
+MIN_CHOP_HZ = 20.0           # the lowest comb spacing searched
+MIN_FUNDAMENTAL_HZ = 20.0    # a rotor turns faster than 20 rev/s; wings beat up to 20 Hz
 MAX_CHOP_HZ = 3000.0         # 6 blades at 500 rev/s
 COARSE_SEGMENT_S = 0.25      # Welch segments of the coarse search
 MAX_COARSE_HARMONICS = 12
@@ -193,8 +194,9 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
        *summed* contrast ranks them: the true spacing f and its sub-multiples f/m explain every line,
        a multiple m f only 1/m of them; the largest spacing whose sum reaches ``MULTIPLE_SHARE`` of
        the best is taken (the sub-multiples are told apart by their half-empty positions next).
-    2. Its fundamental (:func:`fundamental_hz`) must be a rotation rate of at least ``min_hz / 2``:
-       finer lines than that are a bird's wingbeat or a swaying branch, not blades.
+    2. Its fundamental (:func:`fundamental_hz`) must be at least ``MIN_FUNDAMENTAL_HZ``: finer lines
+       are a bird's wingbeat (up to 20 Hz) or a swaying branch, not blades (a rotor turns 20 times a
+       second and more).
     3. Rotors, on the whole-dwell spectrum: the best comb near the coarse one, refined, its lines
        removed; then again within ``+-ROTOR_SPREAD`` while a comb reaches ``ROTOR_SHARE`` of the first
        one's contrast with ``t >= COMB_T``.
@@ -218,7 +220,7 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
     if len(peaks) == 0:
         return None
     guess = float(grid[peaks.max()])
-    if fundamental_hz(coarse, guess, half_width_hz=half_width_hz) < min_hz / 2:
+    if fundamental_hz(coarse, guess, half_width_hz=half_width_hz) < MIN_FUNDAMENTAL_HZ:
         return None
     lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
     width = coarse.resolution_hz / MIN_HARMONICS

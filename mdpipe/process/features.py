@@ -224,14 +224,14 @@ class Rotation:
     n_blades_source: str = None
 
 
-def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noise_power):
+def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, min_hz):
     """Chopping (unaliased: the echo's period) or flash rate (aliased: flash timing) in Hz, None, or an ambiguity.
 
     Returns (frequency_hz or None, note): a note names an ambiguity the flash times could not settle.
     """
     if aliased:
         found = flash_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ,
-                             max_period_s=1.0 / combs.MIN_CHOP_HZ, noise_power=2 * noise_power)  # a difference doubles noise
+                             max_period_s=1.0 / min_hz, noise_power=2 * noise_power)  # a difference doubles noise
         if found is None:
             return None, None
         if found.ambiguous:
@@ -241,7 +241,7 @@ def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noi
         return 1.0 / found.period_s, None
     micro = highpass(demodulated, prf_hz=prf_hz, cutoff_hz=HIGHPASS_SHARE * half_width_hz)
     found = find_period(micro, sample_rate_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ,
-                        max_period_s=1.0 / combs.MIN_CHOP_HZ)
+                        max_period_s=1.0 / min_hz)
     if found is None or found.strength < MIN_ROTOR_PERIODICITY:
         return None, None
     return 1.0 / found.period_s, None
@@ -270,9 +270,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     odd-N flash doubling), else assumed. Without a body line (``body_found`` False) the comb is first
     centred on the Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`).
     """
-    if dwell_s < 2.0 / combs.MIN_CHOP_HZ:
-        note = (f"rotation not estimable: dwell {dwell_s:.3g} s is shorter than two flash periods of the slowest "
-                f"rotor searched ({2.0 / combs.MIN_CHOP_HZ:.3g} s)")
+    slowest_hz = max(combs.MIN_CHOP_HZ, 2.0 / dwell_s)  # two chopping periods in the dwell
+    if slowest_hz >= combs.MAX_CHOP_HZ / 2:
+        note = f"rotation not estimable: dwell {dwell_s:.3g} s is too short for two chopping periods of any rotor"
         return Rotation(withheld("dwell_short", note), withheld("dwell_short", note))
     band_hz = prf_hz / 2 if aliased else half_width_hz
     micro = demodulated - np.mean(demodulated)  # the body, demodulated to 0 Hz; combs score lines from f_chop up
@@ -280,9 +280,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         offset_hz = combs.comb_offset_hz(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz)
         if offset_hz is not None:
             micro = micro * np.exp(-2j * np.pi * offset_hz * np.arange(len(micro)) / prf_hz)
-    comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz)
+    comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz)
     timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
-                                                   prf_hz=prf_hz, noise_power=noise_power)
+                                                   prf_hz=prf_hz, noise_power=noise_power, min_hz=slowest_hz)
     if ambiguity is not None and comb is None:
         note = f"rotation not estimable: {ambiguity}"
         return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
@@ -311,6 +311,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     elif timed_hz is not None:
         chopping_hz = np.array([timed_hz])
     if chopping_hz is None:
+        if slowest_hz > combs.MIN_CHOP_HZ:
+            note = (f"rotation not estimable: no periodic blade flashes above {slowest_hz:.3g} Hz (a dwell of "
+                    f"{dwell_s:.3g} s holds two chopping periods only above it)")
+            return Rotation(withheld("dwell_short", note), withheld("dwell_short", note))
         note = "rotation not estimable: no periodic blade flashes"
         return Rotation(withheld("no_flashes", note), withheld("no_flashes", note))
     fastest_mps = 2 * np.pi * float(chopping_hz.max()) * MIN_BLADE_REACH_M
