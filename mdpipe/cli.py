@@ -233,8 +233,8 @@ def info(capture, as_json, **options):
 @click.option("--min-range-m", type=float, default=ProcessParams.min_range_m, show_default=True)
 @click.option("--max-range-m", type=float, default=ProcessParams.max_range_m, show_default=True)
 @click.option("--max-targets", type=click.IntRange(min=1), default=ProcessParams.max_targets, show_default=True)
-@click.option("--elevation-deg", type=float, default=ProcessParams.elevation_deg, show_default=True,
-              help="Elevation beta of the rotor plane (Eq. 6).")
+@click.option("--elevation-deg", type=click.FloatRange(-90, 90), default=None,
+              help="Elevation beta of the rotor plane (Eq. 6) [not given: 0 assumed, and blade_length_m_status says so].")
 @click.option("--blades", "n_blades", type=BladeCount(), default="auto", show_default=True,
               help="Blades per rotor (N), or auto: measured where the echo tells it, else assumed and said so.")
 @click.option("--threshold-db", type=float, default=ProcessParams.threshold_db, show_default=True,

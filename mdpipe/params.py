@@ -185,8 +185,9 @@ class ProcessParams:
         Most targets reported per capture.
     detection_db : float
         A bin is a target when its moving power exceeds the gate's noise level by this much.
-    elevation_deg : float
-        Elevation beta of the rotor plane (Eq. 6), for the blade-length inversion.
+    elevation_deg : float or None
+        Elevation beta of the rotor plane (Eq. 6), for the blade-length inversion; None: not known,
+        0 assumed and said so (the echo gives r cos(beta) only).
     n_blades : int or None
         Blades per rotor (N), for rotation rate = chopping frequency / N; None: measured from the echo
         where it tells (blade imbalance, odd-N flash doubling), else assumed and said so.
@@ -215,7 +216,7 @@ class ProcessParams:
     range_m: Optional[float] = None
     max_targets: int = 4
     detection_db: float = 12.0
-    elevation_deg: float = 0.0
+    elevation_deg: Optional[float] = None
     n_blades: Optional[int] = None
     threshold_db: float = 20.0
     range_window: str = "hann"
@@ -236,7 +237,7 @@ class ProcessParams:
             raise ParameterError(f"min_range_m={self.min_range_m!r} must lie in [0, max_range_m={self.max_range_m!r})")
         if self.range_m is not None:
             require_positive(range_m=self.range_m)
-        if not -90 <= self.elevation_deg <= 90:
+        if self.elevation_deg is not None and not -90 <= self.elevation_deg <= 90:
             raise ParameterError(f"elevation_deg={self.elevation_deg!r} must lie in [-90, 90]")
         if self.n_blades is not None and (int(self.n_blades) != self.n_blades or self.n_blades < 1):
             raise ParameterError(f"n_blades={self.n_blades!r} must be an integer >= 1")

@@ -43,7 +43,9 @@ def test_process_samples_json_and_outputs(tmp_path):
         for suffix in (".features.csv", ".run.json", "_range.png", "_spectrogram.png", "_spectrum.png"):
             assert (tmp_path / f"{stem}{suffix}").stat().st_size > 0
     table = pd.read_csv(tmp_path / "phantom4_xband.features.csv")
-    assert table.loc[0, "class"] == "drone" and table.loc[0, "elevation_deg"] == 0.0
+    # beta not given: r rests on beta = 0 assumed, and the row says so
+    assert table.loc[0, "class"] == "drone" and pd.isna(table.loc[0, "elevation_deg"])
+    assert table.loc[0, "blade_length_m_status"] == "assumed_blades" and records[0]["n_blades_source"] == "assumed"
     run = json.loads((tmp_path / "phantom4_xband.run.json").read_text())
     assert run["process_params"]["threshold_db"] == 20.0 and run["radar"]["n_samples"] == 64
     assert not list(tmp_path.glob(".*"))  # no temporary files left behind

@@ -6,8 +6,8 @@ m/s. So one rule serves X band and 94 GHz:
 
 * drone: a blade line comb (a chopping frequency measured), or a micro-Doppler half-width above
   ``DRONE_SPREAD_MPS`` (an aliased band counts as at least half the unambiguous span);
-* bird: a wingbeat with a half-width between ``MIN_WING_SPREAD_MPS`` and ``DRONE_SPREAD_MPS``
-  (about the body line, or the band's centre when no body line stands out);
+* bird: a wingbeat, which is only measured with a half-width between ``MIN_WING_SPREAD_MPS`` and
+  ``DRONE_SPREAD_MPS`` (about the body line, or the band's centre when no body line stands out);
 * none: nothing moving above the noise, or neither signature (a branch swaying in the wind repeats
   too, but its micro-Doppler stays below ``MIN_WING_SPREAD_MPS``).
 """
@@ -25,9 +25,6 @@ def classify(row, *, detected):
         return "drone", f"blade line comb at {row['chopping_freq_hz']:.1f} Hz"
     if spread is not None and spread > DRONE_SPREAD_MPS:
         return "drone", f"micro-Doppler half-width {spread:.1f} m/s > {DRONE_SPREAD_MPS:g} m/s"
-    if row.get("wingbeat_freq_hz") is not None:
-        if spread is not None and spread < MIN_WING_SPREAD_MPS:
-            return "none", (f"repeating, but a micro-Doppler half-width of {spread:.2f} m/s is too narrow for wings "
-                            f"(< {MIN_WING_SPREAD_MPS:g} m/s: swaying clutter)")
+    if row.get("wingbeat_freq_hz") is not None:  # only measured with a wing-like half-width (features.wings)
         return "bird", f"wingbeat {row['wingbeat_freq_hz']:.2f} Hz, half-width {spread or 0:.1f} m/s"
     return "none", "moving, but neither blade flashes nor a wingbeat"

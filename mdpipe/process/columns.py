@@ -85,7 +85,8 @@ COLUMNS = (
     Column("stft_window_s", "s", "window of the figure's spectrogram, whole chirps: `--stft-window-s`, else a quarter "
            "chopping period, else min(64 ms, 0.2 / wingbeat), else 32 ms", NO_TARGET),
     Column("stft_hop_s", "s", "hop of that spectrogram: `--stft-hop-s`, else a quarter window", NO_TARGET),
-    Column("elevation_deg", "deg", "elevation beta of the rotor plane used in Eq. 6 (`--elevation-deg`)", "never"),
+    Column("elevation_deg", "deg", "elevation beta of the rotor plane given for Eq. 6 (`--elevation-deg`)",
+           "not given (0 is assumed; `blade_length_m_status` is then `assumed_elevation`)"),
     Column("threshold_db", "dB", "the paper's bandwidth threshold above the spectrum's mean (`--threshold-db`)", "never"),
     Column("wavelength_m", "m", "wavelength at the sweep centre, used for every Doppler-velocity conversion", "never"),
     Column("prf_hz", "Hz", "chirp rate 1/Tp: the slow-time sample rate and the unambiguous Doppler span", "never"),

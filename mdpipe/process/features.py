@@ -13,6 +13,7 @@ import numpy as np
 from mdpipe.physics import rotor
 from mdpipe.physics.radar import range_rate_from_doppler_mps
 from mdpipe.process import combs, doppler, spectral
+from mdpipe.process.classify import DRONE_SPREAD_MPS, MIN_WING_SPREAD_MPS
 from mdpipe.process.flashes import flash_period
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
@@ -412,14 +413,20 @@ def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_
         length = withheld("few_harmonics", f"blade length not estimable: the tips span {gamma:.1f} rotation harmonics "
                           f"(< {min_gamma:.0f}); a flash that long does not fit the analysis window and its Doppler "
                           "edges blur")
-    elif abs(params.elevation_deg) > MAX_ELEVATION_DEG:
+    elif params.elevation_deg is not None and abs(params.elevation_deg) > MAX_ELEVATION_DEG:
         length = withheld("elevation", f"blade length not estimable: elevation {params.elevation_deg:g} deg (Eq. 6 "
                           f"divides by cos(beta) = {np.cos(np.deg2rad(params.elevation_deg)):.2f})")
     else:
         value = float(rotor.blade_length_from_bandwidth_m(bandwidth, rotation_rate_hz=rate.value,
                                                            wavelength_m=wavelength_m,
-                                                           elevation_deg=params.elevation_deg))
-        length = Measured(value, rate.status, rate.note.replace("rotation rate", "blade length") if rate.note else "")
+                                                           elevation_deg=params.elevation_deg or 0.0))
+        if rate.status != OK:
+            length = Measured(value, rate.status, rate.note.replace("rotation rate", "blade length"))
+        elif params.elevation_deg is None:
+            length = Measured(value, "assumed_elevation", "blade length assumes the rotor plane faces the radar edge-on "
+                              "(beta = 0; the echo gives r cos(beta): give --elevation-deg)")
+        else:
+            length = Measured(value)
     return tip, length, (edges.low_hz, edges.high_hz)
 
 
@@ -431,6 +438,21 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s):
     note = (f"no wingbeat between {max(MIN_WINGBEAT_HZ, 2.0 / dwell_s):.2g} and {MAX_WINGBEAT_HZ:g} Hz "
             f"(a dwell of {dwell_s:.3g} s holds two wingbeats only above {2.0 / dwell_s:.2g} Hz)")
     return withheld("dwell_short" if dwell_s < 2.0 / MAX_WINGBEAT_HZ else "no_wingbeat", note)
+
+
+def wings(beat, halfwidth):
+    """A repeating micro-Doppler is a wingbeat only if its spread is that of wings (m/s, wavelength-free).
+
+    Below ``MIN_WING_SPREAD_MPS`` it is swaying clutter (a branch, leaves); above ``DRONE_SPREAD_MPS``
+    (or aliased) faster than wing tips move.
+    """
+    if beat.value is None or halfwidth.value is None:
+        return beat
+    if halfwidth.status == OK and MIN_WING_SPREAD_MPS <= halfwidth.value <= DRONE_SPREAD_MPS:
+        return beat
+    return withheld("not_applicable", f"a micro-Doppler repeating at {beat.value:.3g} Hz is no wingbeat: its "
+                    f"half-width {halfwidth.value:.2g} m/s is outside the {MIN_WING_SPREAD_MPS:g}-{DRONE_SPREAD_MPS:g} "
+                    "m/s of wings")
 
 
 def _columns(primary, measured, derived=None):
@@ -474,7 +496,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     if turn.chopping.value is not None:
         beat = withheld("not_applicable", "")  # blade flashes exclude a bird
     else:
-        beat = wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s)
+        beat = wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s),
+                     band.halfwidth)
     rate_hz = turn.rate.value
     row = {
         **_columns("snr_db", snr_db),

@@ -2,8 +2,8 @@
 
 Every feature column ``X`` of a row has a companion ``X_status``. A value with status ``ok`` is a
 measurement mdpipe stands behind. A value with another status is either absent (null, the code says
-why) or, for ``assumed_blades``, present but resting on an assumption the row names
-(``n_blades``, ``n_blades_source``). Programs should use values whose status is ``ok``.
+why) or, for ``assumed_blades`` and ``assumed_elevation``, present but resting on an assumption the row
+names (``n_blades``, ``n_blades_source``, ``elevation_deg``). Programs should use values whose status is ``ok``.
 """
 
 from dataclasses import dataclass
@@ -20,6 +20,7 @@ STATUS_CODES = {
     "ambiguous_period": "two estimators found periods a whole multiple apart; the dwell does not tell which",
     "not_rotor": "the echo is periodic, but too narrow in Doppler for blades turning at that rate",
     "assumed_blades": "depends on the blade count, which the echo does not tell and the user did not give",
+    "assumed_elevation": "depends on the rotor plane's elevation beta, which was not given: beta = 0 assumed",
     "blade_conflict": "the blade count given contradicts the echo (odd/even flashes or blade imbalance lines)",
     "no_rotation": "needs the rotation rate, which was not measured",
     "elevation": "the rotor plane is too close to face-on (|beta| > 80 deg): Eq. 6 divides by ~0",
