@@ -81,11 +81,23 @@ def test_blade_length_rules():
     aliased = dataclasses.replace(DRONE, prf_hz=6000.0)  # tip 3.1 kHz > 3 kHz; chopping 160 Hz still sampled
     assert scoring.rotation_estimable(aliased) == (True, "")
     assert scoring.blade_length_estimable(aliased) == (False, "aliased")
-    # beta = 10 deg not given: cos = 0.985 >= 0.98, Eq. 6 still gives r within 1.5 %; beta = 20 deg does not
-    assert scoring.blade_length_estimable(dataclasses.replace(DRONE, elevation_given=False)) == (True, "")
-    assert scoring.blade_length_estimable(dataclasses.replace(DRONE, elevation_given=False, elevation_deg=20.0)) \
+    # beta not given: Eq. 6 gives r cos(beta), so r is an assumption even at beta = 10 deg (cos 0.985)
+    assert scoring.blade_length_estimable(dataclasses.replace(DRONE, elevation_given=False)) \
         == (False, "elevation_unknown")
     assert scoring.blade_length_estimable(dataclasses.replace(DRONE, tip_doppler_hz=900.0)) == (False, "few_harmonics")
+
+
+def test_body_velocity_rules():
+    import dataclasses
+
+    point = scoring.Physics(kind="point", expected_class="none", dwell_s=2.0, prf_hz=6400.0, body_line_snr_db=30.0,
+                            has_body=True, body_velocity_mps=7.0, body_doppler_max_hz=3600.0,
+                            velocity_span_mps=12.5, range_bin_m=1.5)
+    # aliased (3.6 kHz > 3.2 kHz), but one 1.5 m bin over 2 s (0.75 m/s) is below a quarter span (3.1 m/s)
+    assert scoring.body_velocity_estimable(point) == (True, "")
+    assert scoring.body_velocity_estimable(dataclasses.replace(point, dwell_s=0.25)) == (False, "aliased")
+    assert scoring.body_velocity_estimable(dataclasses.replace(point, body_doppler_max_hz=3000.0, dwell_s=0.25)) \
+        == (True, "")
 
 
 def test_score_row_and_coverage_arithmetic():

@@ -32,7 +32,6 @@ MIN_ROTATIONS = 3            # rotation: the dwell holds 3 turns of the slowest 
 MIN_COS_ROTATION = 0.1       # rotation: |beta| <= 84 deg (at 90 deg the blades move across the line of sight)
 MAX_BLADE_ELEVATION_DEG = 80.0
 MIN_TIP_HARMONICS = 24       # blade length: the band +-f_tip spans 24 rotation harmonics
-UNKNOWN_ELEVATION_COS = 0.98  # blade length without a given beta: cos(beta) >= 0.98 (|beta| <= 11.5 deg)
 MIN_WINGBEATS = 2            # wingbeat: two beats in a row while flapping
 POWER_SAMPLES = 4096
 
@@ -67,6 +66,8 @@ class Physics:
     flap_run_s: float = 0.0
     has_body: bool = False
     body_velocity_mps: float = float("nan")
+    velocity_span_mps: float = float("inf")
+    range_bin_m: float = float("inf")
 
     @property
     def detectable(self):
@@ -113,7 +114,7 @@ def blade_length_estimable(p):
     All of: rotation estimable; the tips' band (body Doppler plus ``f_tip``) inside +-PRF/2 (not
     aliased); ``|beta| <= MAX_BLADE_ELEVATION_DEG``; the band ``2 f_tip`` spans ``MIN_TIP_HARMONICS``
     rotation harmonics (else its edge is a handful of lines); beta given to the processing, or so
-    small that ``cos beta >= UNKNOWN_ELEVATION_COS`` (Eq. 6 gives ``r cos beta``, not r).
+    given to the processing (Eq. 6 gives ``r cos beta``, not r: without beta, r is an assumption).
     """
     ok, reason = rotation_estimable(p)
     if not ok:
@@ -124,7 +125,7 @@ def blade_length_estimable(p):
         return False, "elevation"
     if 2 * p.tip_doppler_hz / max(p.rotor_rates_hz) < MIN_TIP_HARMONICS:
         return False, "few_harmonics"
-    if not p.elevation_given and np.cos(np.deg2rad(p.elevation_deg)) < UNKNOWN_ELEVATION_COS:
+    if not p.elevation_given:
         return False, "elevation_unknown"
     return True, ""
 
@@ -150,14 +151,15 @@ def body_velocity_estimable(p):
 
     All of: a body scatterer exists (a drone's or bird's body RCS > 0, or a moving point); its line,
     its power shared among the Doppler bins its track sweeps over the dwell, stands ``LINE_SNR_DB``
-    above the noise; its Doppler stays within +-PRF/2 (beyond, the velocity is known only modulo
-    ``lambda PRF / 2``).
+    above the noise; its Doppler stays within +-PRF/2, or the range track resolves the alias (beyond
+    PRF/2 the Doppler gives the velocity only modulo the span ``lambda PRF / 2``; one range bin over the
+    dwell below a quarter span tells which alias).
     """
     if not p.has_body:
         return False, "no_body"
     if p.body_line_snr_db < LINE_SNR_DB:
         return False, "below_noise"
-    if p.body_doppler_max_hz >= p.prf_hz / 2:
+    if p.body_doppler_max_hz >= p.prf_hz / 2 and p.range_bin_m / p.dwell_s >= p.velocity_span_mps / 4:
         return False, "aliased"
     return True, ""
 
@@ -289,7 +291,8 @@ def physics_of(target, expected, *, scene, noise_sigma_v, process):
     wavelength_m, prf_hz = radar.wavelength_m, radar.prf_hz
     kind = target.kind
     base = dict(kind=kind, expected_class=expected.get("expected_class", CLASS_OF_KIND.get(kind, "none")),
-                dwell_s=dwell_s, prf_hz=prf_hz)
+                dwell_s=dwell_s, prf_hz=prf_hz, velocity_span_mps=wavelength_m * prf_hz / 2,
+                range_bin_m=radar.range_bin_m)
     if kind == "static":
         return Physics(**base)
     noise_v2 = noise_sigma_v ** 2 if noise_sigma_v > 0 else np.finfo(float).tiny

@@ -22,6 +22,7 @@ from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeat
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame
 BODY_FRAME_S = 0.032
 BODY_STEADY_SHARE = 0.5      # frames whose strongest line lies on the smoothed body track
+MAX_SPEED_MPS = 25.0         # birds and small drones fly slower: a faster alias of the body Doppler is not taken
 BODY_TRACK_FRAMES = 9        # running median of the body track (rotor lines win single frames)
 MIN_REV_PER_S, MAX_REV_PER_S = 10.0, 500.0
 MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
@@ -77,7 +78,47 @@ class BodyMotion:
     demodulated: np.ndarray
 
 
-def body_motion(signal, *, prf_hz, wavelength_m):
+@dataclass(frozen=True)
+class RangeTrack:
+    """The target's range over the dwell, per tracking chunk: ``range_m`` at ``t_s``, bins of ``bin_m``."""
+
+    t_s: np.ndarray
+    range_m: np.ndarray
+    bin_m: float
+
+    def range_rate_mps(self):
+        """Least-squares range rate and its bound: a bin's uncertainty over the track's span."""
+        span_s = float(self.t_s[-1] - self.t_s[0]) if len(self.t_s) > 1 else 0.0
+        if span_s <= 0:
+            return 0.0, np.inf
+        return float(np.polyfit(self.t_s, self.range_m, 1)[0]), self.bin_m / span_s
+
+
+def dealias_velocity(doppler_mps, *, span_mps, track):
+    """The body velocity among ``doppler_mps + k span_mps`` that the range track supports, or why none.
+
+    The Doppler gives the range rate only modulo the unambiguous span ``lambda PRF / 2``; the range
+    track (bins of c / 2B over the dwell) gives it coarsely but without ambiguity. When the track's
+    uncertainty is below a quarter span the alias nearest the track's rate is the velocity; otherwise
+    the Doppler stands only when every other alias the track allows is faster than ``MAX_SPEED_MPS``.
+    """
+    if track is None:
+        return Measured(doppler_mps)
+    rate, bound = track.range_rate_mps()
+    if bound < span_mps / 4:
+        k = round((rate - doppler_mps) / span_mps)
+        note = "" if k == 0 else (f"body velocity unfolded by {k:+d} x {span_mps:.3g} m/s: the range track moves at "
+                                  f"{rate:.2g} +- {bound:.2g} m/s")
+        return Measured(doppler_mps + k * span_mps, OK, note)
+    aliases = doppler_mps + span_mps * np.arange(-3, 4)
+    possible = aliases[(np.abs(aliases - rate) <= bound) & (np.abs(aliases) <= MAX_SPEED_MPS)]
+    if len(possible) == 1 and possible[0] == doppler_mps:
+        return Measured(doppler_mps)
+    return withheld("velocity_ambiguous", f"body velocity not estimable: the Doppler gives it modulo {span_mps:.3g} m/s "
+                    f"and the range track ({rate:.2g} +- {bound:.2g} m/s) does not tell which")
+
+
+def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     """Body Doppler and velocity from the strongest line of each 32 ms frame, when a body line exists.
 
     Per frame the strongest line must stand ``BODY_LINE_DB`` above the strongest line more than two
@@ -85,7 +126,8 @@ def body_motion(signal, *, prf_hz, wavelength_m):
     interference skews the spectrum) there is no body line. The track is the running median of the
     frame peaks over ``BODY_TRACK_FRAMES`` frames, so a frame where a rotor line outshines the body
     does not move it; if fewer than ``BODY_STEADY_SHARE`` of the frames peak on the track, the body
-    is not steady enough to demodulate. The velocity is the median of the track.
+    is not steady enough to demodulate. The velocity is the median of the track, unfolded with the
+    range ``track`` where the Doppler alone is ambiguous (:func:`dealias_velocity`).
     """
     frame_s = min(BODY_FRAME_S, len(signal) / prf_hz)
     spec = doppler.spectrogram(signal, prf_hz=prf_hz, window_s=frame_s, hop_s=frame_s / 4)
@@ -106,9 +148,10 @@ def body_motion(signal, *, prf_hz, wavelength_m):
     if on_track < BODY_STEADY_SHARE:
         return BodyMotion(None, withheld("body_unsteady", f"body velocity not estimable: the strongest line lies on "
                                          f"the body track in only {on_track:.0%} of the frames"), signal)
-    track = np.interp(np.arange(len(signal)) / prf_hz, spec.t_s, frame_track)
-    velocity = float(range_rate_from_doppler_mps(float(np.median(track)), wavelength_m=wavelength_m))
-    return BodyMotion(track, Measured(velocity), doppler.demodulate(signal, track, prf_hz=prf_hz))
+    doppler_track = np.interp(np.arange(len(signal)) / prf_hz, spec.t_s, frame_track)
+    velocity = float(range_rate_from_doppler_mps(float(np.median(doppler_track)), wavelength_m=wavelength_m))
+    return BodyMotion(doppler_track, dealias_velocity(velocity, span_mps=wavelength_m * prf_hz / 2, track=track),
+                      doppler.demodulate(signal, doppler_track, prf_hz=prf_hz))
 
 
 def highpass(signal, *, prf_hz, cutoff_hz):
@@ -464,7 +507,7 @@ def _columns(primary, measured, derived=None):
     return entries
 
 
-def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
+def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=None):
     """Measure every feature of one target's complex slow-time ``signal`` (channels combined).
 
     Parameters
@@ -474,6 +517,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     noise_power : float
         Noise power per chirp of ``signal`` (V^2).
     params : ProcessParams
+    track : RangeTrack or None
+        The target's range over the dwell, which unfolds an aliased body Doppler.
     """
     dwell_s = len(signal) / prf_hz
     s = np.asarray(signal, dtype=np.complex128)
@@ -481,7 +526,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     moving = float(np.mean(np.abs(s) ** 2))
     snr = (moving - noise_power) / noise_power if noise_power > 0 else np.inf
     snr_db = Measured(float(10 * np.log10(snr))) if snr > 0 else withheld("no_signal", "no power above the noise")
-    body = body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m)
+    body = body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m, track=track)
     band = doppler_band(s, body.demodulated, prf_hz=prf_hz, wavelength_m=wavelength_m, noise_power=noise_power)
     body_doppler_hz = float(np.median(body.track_hz)) if body.track_hz is not None else 0.0
     bandwidth, extent = paper_bandwidth(body.demodulated, prf_hz=prf_hz, threshold_db=params.threshold_db,
@@ -520,7 +565,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
     row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
     notes = [m.note for m in (body.velocity, band.halfwidth, bandwidth, turn.rate, tip, length, beat)
-             if m.note and m.status != OK]
+             if m.note and (m.status != OK or m is body.velocity)]
     notes = list(dict.fromkeys(notes))  # one sentence once (blade length and its tip share theirs)
     return TargetAnalysis(row=row, spectrum=band.spectrum, spectrogram=shown, paper_extent_hz=extent,
                           flash_edges_hz=edges, notes=notes)

@@ -9,7 +9,7 @@ from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
 from mdpipe.process import memory, ranging, selection
 from mdpipe.process.classify import classify
-from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, analyse_target
+from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analyse_target
 
 MIN_CHIRPS = 64
 
@@ -111,9 +111,12 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         targets = _target_signals(reader, stats, detections, process)
         layout = reader.layout.describe()
     for index, (detection, (path_gates, signal, rx_gain_db)) in enumerate(zip(detections, targets)):
-        analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
-                                  noise_power=noise, params=process)
         ranges = stats.gate_range_m[path_gates]
+        chunk_s = process.chunk_chirps / params.prf_hz
+        track = RangeTrack(t_s=(np.arange(len(ranges)) + 0.5) * chunk_s, range_m=ranges,
+                           bin_m=params.range_bin_m / process.zero_pad)
+        analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
+                                  noise_power=noise, params=process, track=track)
         row = _base_row(path, stats, process, params)
         row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),
                    range_min_m=float(ranges.min()), range_max_m=float(ranges.max()), rx_gain_db=rx_gain_db)

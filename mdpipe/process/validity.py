@@ -28,6 +28,7 @@ STATUS_CODES = {
     "no_edges": "no flash frame shows both Doppler edges inside the span",
     "no_body_line": "no body line stands out of the micro-Doppler",
     "body_unsteady": "the strongest line jumps between the body and rotor lines: no steady body track",
+    "velocity_ambiguous": "the Doppler gives the velocity only modulo lambda PRF / 2 and the range track cannot tell which",
     "body_only": "only the body line crosses the threshold: no micro-Doppler extent",
     "below_threshold": "nothing in the spectrum stands the threshold above its mean",
     "no_wingbeat": "no repeating wingbeat pattern in the dwell",

@@ -109,3 +109,17 @@ def test_rotating_parts_alone_moving(tmp_path, rates):
     assert row["body_velocity_mps"] is None and row["chopping_freq_hz_status"] == "ok"
     assert row["rotation_rate_hz"] == pytest.approx(np.median(np.abs(rates)), rel=0.02)
     assert row["blade_length_m"] == pytest.approx(0.105, rel=0.03)
+
+
+def test_aliased_body_doppler_unfolded_by_the_range_track(tmp_path):
+    """A point receding at 7 m/s at 77 GHz with PRF 6.4 kHz: the Doppler (-3.6 kHz) folds into +-3.2 kHz, a
+    velocity span of lambda PRF / 2 = 12.5 m/s, so it reads -5.5 m/s. Over 2 s the point crosses 14 m, ~9 bins
+    of 1.5 m: the range track's rate (bound 0.75 m/s) picks the alias 7.0 m/s."""
+    radar = dict(f_start_hz=76.95e9, f_stop_hz=77.05e9, ramp_up_s=25.6e-6, chirp_period_s=1 / 6400.0,
+                 sample_rate_hz=5.0e6, n_samples=128, n_chirps=12800, n_channels=1)
+    target = {"type": "point", "motion": {"position_m": [20.0, 0.0, 0.0], "velocity_mps": [7.0, 0.0, 0.0]},
+              "rcs_m2": 0.01}
+    path, truth = simulate(tmp_path, scene_mapping(radar, [target], noise={"snr_db": 10.0}, seed=2))
+    row = process_capture(path, ProcessParams()).rows[0]
+    assert row["body_velocity_mps_status"] == "ok" and "unfolded by +1" in row["notes"]
+    assert row["body_velocity_mps"] == pytest.approx(7.0, abs=0.1)
