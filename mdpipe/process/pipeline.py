@@ -27,23 +27,29 @@ class CaptureResult:
     rows: list
 
 
-def _target_signals(reader, stats, detections, process):
-    """Pass 2: each detection's gate path, its slow time (followed across bins, stitched) and RX gain (dB).
+def target_signals(reader, stats, detections, process):
+    """Pass 2: each detection's slow time along its fractional range track, and where it went.
 
-    The gain is that of coherent combining in the bin where the target spent most chunks.
+    The channels are combined with one weight vector per target, the dominant eigenvector of the
+    moving covariance summed over the bins it visits (chunk-weighted): one spatial signature, so
+    no weight change along the track.
+
+    Returns
+    -------
+    list of (range_min_m, range_max_m, signal (n_chirps,) complex, rx_gain_db)
     """
-    paths = [selection.track(stats, d) for d in detections]
-    used = sorted({int(g) for path in paths for g in path})
-    weights, gains = selection.channel_weights(stats.covariance[used])
-    columns = ranging.slow_time(reader, stats.gate_bins[used], weights, window=process.range_window,
+    tracks, weights, gains = [], [], []
+    for detection in detections:
+        track_bins, visits = selection.chirp_track(stats, detection, window=process.range_window,
+                                                   n_samples=reader.params.n_samples, zero_pad=process.zero_pad)
+        weight, gain = selection.channel_weights(np.tensordot(visits, stats.covariance, axes=1)[None])
+        tracks.append(track_bins)
+        weights.append(weight[0])
+        gains.append(float(gain[0]))
+    signals = ranging.slow_time(reader, np.array(tracks), np.array(weights), window=process.range_window,
                                 zero_pad=process.zero_pad, dtype=process.dtype, all_bins=process.range_bins == "all")
-    column_of = {g: i for i, g in enumerate(used)}
-    targets = []
-    for path in paths:
-        mapped = np.array([column_of[int(g)] for g in path])
-        targets.append((path, selection.stitch(columns, mapped, process.chunk_chirps),
-                        float(gains[np.bincount(mapped).argmax()])))
-    return targets
+    return [(*selection.track_range_m(track_bins, reader.params, process.zero_pad), signals[:, i], gain)
+            for i, (track_bins, gain) in enumerate(zip(tracks, gains))]
 
 
 def _base_row(path, stats, process, params):
@@ -66,9 +72,9 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None):
         params = reader.params
         if reader.n_chirps < MIN_CHIRPS:
             raise ParameterError(f"{path}: {reader.n_chirps} chirp(s); the analysis needs at least {MIN_CHIRPS}")
+        max_range_m = min(process.max_range_m, params.max_range_m)
         stats = ranging.gate_statistics(reader, window=process.range_window, zero_pad=process.zero_pad,
-                                        min_range_m=process.min_range_m,
-                                        max_range_m=min(process.max_range_m, params.max_range_m),
+                                        min_range_m=process.min_range_m, max_range_m=max_range_m,
                                         chunk_chirps=process.chunk_chirps)
         if stats.static_power.max() == 0 and stats.moving_power.max() == 0:
             raise ParameterError(f"{path}: every sample is zero; the recording holds no signal")
@@ -76,7 +82,8 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None):
             raise ParameterError(f"{path}: the range gate [{process.min_range_m:g}, {process.max_range_m:g}] m holds "
                                  f"{len(stats.gate_bins)} bin(s) of {params.range_bin_m:.3g} m; widen it")
         if process.range_m is not None:
-            detections = [selection.manual_detection(stats, process.range_m)]
+            detections = [selection.manual_detection(stats, process.range_m, gate_m=(process.min_range_m, max_range_m),
+                                                     params=params, zero_pad=process.zero_pad)]
         else:
             detections = selection.detect(stats, detection_db=process.detection_db, max_targets=process.max_targets,
                                           zero_pad=process.zero_pad)
@@ -94,15 +101,14 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None):
                                       f"{process.max_range_m:g} m (strongest bin {strongest:.1f} dB < "
                                       f"{process.detection_db:g} dB)"] + capture_notes)
             return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row])
-        targets = _target_signals(reader, stats, detections, process)
+        targets = target_signals(reader, stats, detections, process)
         layout = reader.layout.describe()
-    for index, (detection, (path_gates, signal, rx_gain_db)) in enumerate(zip(detections, targets)):
+    for index, (detection, (range_min_m, range_max_m, signal, rx_gain_db)) in enumerate(zip(detections, targets)):
         analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
                                   noise_power=noise, params=process)
-        ranges = stats.gate_range_m[path_gates]
         row = _base_row(path, stats, process, params)
         row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),
-                   range_min_m=float(ranges.min()), range_max_m=float(ranges.max()), rx_gain_db=rx_gain_db)
+                   range_min_m=range_min_m, range_max_m=range_max_m, rx_gain_db=rx_gain_db)
         row.update(analysis.row)
         label, reason = classify(row, detected=True)
         row["class"] = label
