@@ -164,8 +164,8 @@ class ProcessParams:
         Analyse this range (manual bin choice) instead of detecting.
     max_targets : int
         Most targets reported per capture.
-    detection_db : float
-        A bin is a target when its moving power exceeds the gate's noise level by this much.
+    false_alarm_probability : float
+        Probability that noise alone gives a detection in a capture (range-Doppler CFAR thresholds).
     elevation_deg : float
         Elevation beta of the rotor plane (Eq. 6), for the blade-length inversion.
     n_blades : int
@@ -192,7 +192,7 @@ class ProcessParams:
     max_range_m: float = 200.0
     range_m: Optional[float] = None
     max_targets: int = 4
-    detection_db: float = 12.0
+    false_alarm_probability: float = 1e-3
     elevation_deg: float = 0.0
     n_blades: int = 2
     threshold_db: float = 20.0
@@ -212,6 +212,8 @@ class ProcessParams:
             raise ParameterError(f"min_range_m={self.min_range_m!r} must lie in [0, max_range_m={self.max_range_m!r})")
         if self.range_m is not None:
             require_positive(range_m=self.range_m)
+        if not 0 < self.false_alarm_probability < 1:
+            raise ParameterError(f"false_alarm_probability={self.false_alarm_probability!r} must lie in (0, 1)")
         if not -90 <= self.elevation_deg <= 90:
             raise ParameterError(f"elevation_deg={self.elevation_deg!r} must lie in [-90, 90]")
         if int(self.n_blades) != self.n_blades or self.n_blades < 1:

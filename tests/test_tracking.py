@@ -30,7 +30,7 @@ def tracked_signal(path, process=ProcessParams()):
         stats = ranging.gate_statistics(reader, window=process.range_window, zero_pad=process.zero_pad,
                                         min_range_m=process.min_range_m, max_range_m=reader.params.max_range_m,
                                         chunk_chirps=process.chunk_chirps)
-        detections = selection.detect(stats, detection_db=process.detection_db, max_targets=1)
+        detections = selection.detect(stats, selection.detection_test(stats), max_targets=1)
         range_min_m, range_max_m, signal, _ = target_signals(reader, stats, detections, process)[0]
         return signal, reader.params, (range_min_m, range_max_m)
 

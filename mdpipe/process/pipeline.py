@@ -62,6 +62,16 @@ def _base_row(path, stats, process, params):
     }
 
 
+def no_detection_note(test, process):
+    """Why nothing was detected: the strongest line and band against their thresholds (dB over the noise)."""
+    def db(x):
+        return 10 * np.log10(max(x, np.finfo(float).tiny))
+    return (f"no moving target above the noise in {process.min_range_m:g}-{process.max_range_m:g} m at a false-alarm "
+            f"probability of {test.false_alarm_probability:g} per capture (strongest Doppler line "
+            f"{db(test.line.max()):.1f} dB < {db(test.line_threshold):.1f} dB, strongest band "
+            f"{db(test.band.max()):.1f} dB < {db(test.band_threshold):.1f} dB, over the noise per cell)")
+
+
 def process_capture(path, process, *, frame_counter="auto", overrides=None):
     """Analyse one capture; returns a :class:`CaptureResult`.
 
@@ -85,8 +95,8 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None):
             detections = [selection.manual_detection(stats, process.range_m, gate_m=(process.min_range_m, max_range_m),
                                                      params=params, zero_pad=process.zero_pad)]
         else:
-            detections = selection.detect(stats, detection_db=process.detection_db, max_targets=process.max_targets,
-                                          zero_pad=process.zero_pad)
+            test = selection.detection_test(stats, false_alarm_probability=process.false_alarm_probability)
+            detections = selection.detect(stats, test, max_targets=process.max_targets, zero_pad=process.zero_pad)
         noise = selection.noise_power(stats) / params.n_channels
         capture_notes = []
         if stats.clipped_fraction > 0:
@@ -95,11 +105,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None):
         rows, analyses = [], []
         if not detections:
             row = _base_row(path, stats, process, params)
-            power = stats.gate_moving_power
-            strongest = 10 * np.log10(power.max() / noise / params.n_channels) if noise > 0 else 0.0
-            row["notes"] = "; ".join([f"no moving target above the noise in {process.min_range_m:g}-"
-                                      f"{process.max_range_m:g} m (strongest bin {strongest:.1f} dB < "
-                                      f"{process.detection_db:g} dB)"] + capture_notes)
+            row["notes"] = "; ".join([no_detection_note(test, process)] + capture_notes)
             return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row])
         targets = target_signals(reader, stats, detections, process)
         layout = reader.layout.describe()

@@ -5,8 +5,10 @@ Pass 1 (:func:`gate_statistics`) reads a sample of every chunk (the first ``prob
 ``MIN_PROBED_CHIRPS``) and evaluates the windowed range DFT at the bins from 0 to
 the end of the gate only, as one matrix product. It keeps what selection needs: the static
 (slow-time mean) and moving (MTI) power of those bins, each gate bin's channel mean and channel
-covariance of its moving part, and its moving power in every chunk (for tracking). Statistics of
-an eighth of the chirps are statistics all the same; memory does not grow with the capture.
+covariance of its moving part, its moving power in every chunk (for tracking), and the Doppler
+power spectrum of each gate bin averaged over the probed blocks (for detection: each block's slow
+time, its mean removed, Hann-windowed, summed over channels). Statistics of an eighth of the chirps
+are statistics all the same; memory does not grow with the capture.
 
 Pass 2 (:func:`slow_time`) reads every chirp and evaluates the DFT only where the targets are:
 each target follows a fractional range-bin track, and in each chunk of chirps the DFT is evaluated
@@ -36,6 +38,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from mdpipe.io import INT16_FULL_SCALE
+from mdpipe.process.doppler import periodic_hann
 
 PROBE_CHIRPS = 32
 TRANSFORM_ROWS = 128  # 128 x 2048 float32 = 1 MB: stays in L2
@@ -115,6 +118,12 @@ class GateStatistics:
         Moving power (about the chunk's own mean) of each gate bin in each chunk, summed over channels.
     chunk_centres : ndarray (n_chunks,)
         Chirp index (fractional) at the middle of the chirps each chunk's power was measured on.
+    doppler_power : ndarray (B, L)
+        Per gate bin, the Doppler power spectrum (FFT order, L = chirps per probed block) of each
+        block's slow time about its mean, periodic Hann window, scaled so a tone of amplitude a
+        gives a^2, summed over channels and averaged over the ``doppler_blocks`` full blocks.
+    doppler_blocks : int
+        Blocks averaged in ``doppler_power``.
     n_chirps : int
         Chirps in the capture.
     clipped_fraction : float
@@ -129,6 +138,8 @@ class GateStatistics:
     covariance: np.ndarray
     chunk_power: np.ndarray
     chunk_centres: np.ndarray
+    doppler_power: np.ndarray
+    doppler_blocks: int
     n_chirps: int
     clipped_fraction: float = 0.0
 
@@ -161,8 +172,10 @@ def _probe(reader, first, rows, matrix, gate, clip):
     g = x[:, :, gate].transpose(2, 0, 1)  # (B, C, M)
     local = g - g.mean(axis=-1, keepdims=True)
     clipped = 0 if clip is None else int(np.count_nonzero(counts >= clip) + np.count_nonzero(counts <= -clip - 1))
+    window = periodic_hann(rows).astype(np.float32)
+    doppler = np.sum(np.abs(np.fft.fft(local * window, axis=-1)) ** 2, axis=1) / np.sum(window) ** 2
     return (x.sum(axis=1).T, np.einsum("cmb,cmb->b", x, x.conj()).real, g @ g.conj().transpose(0, 2, 1),
-            np.sum(np.abs(local) ** 2, axis=(1, 2)) / rows, clipped, counts.size)
+            np.sum(np.abs(local) ** 2, axis=(1, 2)) / rows, clipped, counts.size, doppler)
 
 
 def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_range_m=np.inf, chunk_chirps=256,
@@ -183,6 +196,7 @@ def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_r
     power = np.zeros(len(ranges))
     cross = np.zeros((len(gate), n_ch, n_ch), dtype=np.complex128)
     chunk_power, clipped, counted = [], 0, 0
+    doppler, blocks = np.zeros((len(gate), rows[0])), 0
     with threadpool_limits(limits=1, user_api="blas"), ThreadPoolExecutor(WORKERS) as pool:
         for part in pool.map(lambda job: _probe(reader, *job, matrix, gate, clip), zip(firsts, rows)):
             total += part[0]  # summed as they come: memory does not grow with the capture
@@ -191,6 +205,9 @@ def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_r
             chunk_power.append(part[3])
             clipped += part[4]
             counted += part[5]
+            if part[6].shape[1] == rows[0]:  # full blocks only (the last may be shorter)
+                doppler += part[6]
+                blocks += 1
     scale = params.full_scale_v_per_lsb
     n = sum(rows)
     mean = total * (scale / n)
@@ -202,6 +219,7 @@ def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_r
                           mean=gmean, covariance=covariance,
                           chunk_power=np.array(chunk_power).reshape(-1, len(gate)) * scale ** 2,
                           chunk_centres=np.array(firsts) + (np.array(rows) - 1) / 2,
+                          doppler_power=doppler * (scale ** 2 / blocks), doppler_blocks=blocks,
                           n_chirps=reader.n_chirps, clipped_fraction=clipped / counted)
 
 

@@ -1,7 +1,13 @@
 """Which range bins hold targets, how to combine the RX channels, and how to follow a target in range.
 
-Detection works on moving power (MTI: the slow-time mean removed), so a static scatterer 30 dB
-stronger than a drone does not win. The noise level is the median moving power over the gate.
+Detection is a range-Doppler CFAR on pass 1's Doppler spectra (each probed block's slow time,
+its mean removed: a static scatterer 40 dB stronger than a drone leaves nothing there; the 0 Hz
+cell, where clutter that barely moves lands, is left out as well). The noise level is the median over the
+gate's bins and Doppler cells; the thresholds come from the Gamma statistics of an average of
+``blocks x channels`` looks, set so that noise alone gives a detection in a capture with
+probability ``FALSE_ALARM_PROBABILITY``: half of it to a line test (the strongest Doppler cell of
+a bin: a body line, a rotor or wingbeat line), half to a band test (the mean over the Doppler
+cells: blade flashes spread over the span). The more chirps, the lower both thresholds stand.
 
 A target is followed at a fractional range position: per chunk, the bin where it is strongest and
 the power of its two neighbours give its offset from that bin through the window's range response
@@ -15,11 +21,15 @@ from typing import Optional
 import numpy as np
 
 from mdpipe.errors import ParameterError
+from mdpipe.process.cfar import gamma_isf
+from mdpipe.process.doppler import periodic_hann
 from mdpipe.process.filters import moving_average, running_median
 from mdpipe.process.ranging import bin_range_m, range_response
 
 MIN_SEPARATION_BINS = 3  # Hann main lobe +-2 bins, plus the range-Doppler spread of fast blade tips
 SIDELOBE_DB = 40.0       # peaks this far below the strongest are taken for its range sidelobes
+FALSE_ALARM_PROBABILITY = 1e-3  # per capture of noise only
+CLUTTER_CELLS = 0        # Doppler cells either side of the 0 Hz cell also left out of detection
 TRACK_HALF_WIDTH_BINS = 2
 SWITCH_DB = 3.0
 SMOOTH_CHUNKS = 5        # fractional track averaged over this many chunks (after a 5-chunk median)
@@ -46,28 +56,115 @@ def noise_power(stats):
     return float(np.median(stats.gate_moving_power))
 
 
-def detect(stats, *, detection_db, max_targets, zero_pad=1):
-    """Local maxima of moving power above the noise by ``detection_db``, strongest first."""
-    power = stats.gate_moving_power
-    floor = noise_power(stats)
-    if len(power) < 3 or floor <= 0:
+@dataclass(frozen=True)
+class DetectionTest:
+    """The range-Doppler test of every gate bin, in units of the noise's mean power per Doppler cell.
+
+    Attributes
+    ----------
+    noise_cell : float
+        Mean noise power per Doppler cell of ``stats.doppler_power`` (V^2).
+    line, band : ndarray (B,)
+        Strongest Doppler cell, and mean over the Doppler cells, of each gate bin, over ``noise_cell``
+        (cells within ``CLUTTER_CELLS`` of 0 Hz left out).
+    line_threshold, band_threshold : float
+        What noise alone exceeds anywhere in the gate with probability ``false_alarm_probability / 2`` each.
+    false_alarm_probability : float
+        Per capture (noise only, over all bins and cells).
+    """
+
+    noise_cell: float
+    line: np.ndarray
+    band: np.ndarray
+    line_threshold: float
+    band_threshold: float
+    false_alarm_probability: float
+
+    @property
+    def score(self):
+        """Per gate bin, the larger of line and band over their thresholds: a target where >= 1."""
+        return np.maximum(self.line / self.line_threshold, self.band / self.band_threshold)
+
+
+def block_noise_response(n_chirps):
+    """Noise in the Doppler cells of a block of ``n_chirps`` with its mean removed and a periodic Hann window.
+
+    The cells are ``Y = F W P x`` (P removes the mean, W the window, F the DFT); for white noise of
+    variance s^2 their covariance is ``s^2 A A^H`` with ``A = F W P``.
+
+    Returns
+    -------
+    gain : ndarray (L,)
+        Each cell's noise power relative to a cell without the mean removal (1 except near 0 Hz:
+        1/3 at 0, 5/6 at +-1).
+    rho : ndarray (L, L)
+        Magnitude of the correlation between cells (for the periodic Hann, 2/3 between
+        neighbours, 1/6 two apart, 0 beyond, away from 0 Hz).
+    """
+    window = periodic_hann(n_chirps)
+    projector = np.eye(n_chirps) - 1.0 / n_chirps
+    a = np.fft.fft(window[:, None] * projector, axis=0)
+    covariance = a @ a.conj().T
+    variance = np.real(np.diagonal(covariance))
+    return variance / np.sum(window ** 2), np.abs(covariance) / np.sqrt(np.outer(variance, variance))
+
+
+def detection_test(stats, *, false_alarm_probability=FALSE_ALARM_PROBABILITY):
+    """Range-Doppler CFAR over the gate (see the module notes); returns a :class:`DetectionTest`.
+
+    Each Doppler cell of ``stats.doppler_power``, divided by its noise gain (the mean removal takes
+    noise out of the cells next to 0 Hz: :func:`block_noise_response`), is for noise the mean of
+    ``n = blocks x channels`` exponential powers: ``mu Gamma(n) / n``. The noise level ``mu`` is the
+    median over every gate bin and cell divided by the median of ``Gamma(n) / n`` (targets occupy
+    few of them). Line test: the strongest cell against the Gamma(n) quantile at ``p / 2`` shared
+    by all cells (union bound). Band test (energy spread over the span: blade flashes): the mean
+    over a bin's L cells, correlated through the window, is ``Gamma(m) / m`` with
+    ``m = n L^2 / sum_ij rho_ij^2`` (variance-matched, rounded down), against the quantile at
+    ``p / 2`` shared by the bins.
+    """
+    power = stats.doppler_power
+    n_gate, n_cells = power.shape
+    used = np.flatnonzero(np.minimum(np.arange(n_cells), n_cells - np.arange(n_cells)) > CLUTTER_CELLS)
+    gain, rho = block_noise_response(n_cells)
+    looks = stats.doppler_blocks * stats.covariance.shape[1]
+    cells = power[:, used] / gain[used]
+    noise = float(np.median(cells)) / (gamma_isf(looks, 0.5) / looks)
+    band_looks = max(1, int(looks * len(used) ** 2 / np.sum(rho[np.ix_(used, used)] ** 2)))
+    p = false_alarm_probability / 2
+    tiny = np.finfo(float).tiny
+    return DetectionTest(noise_cell=noise, line=cells.max(axis=1) / max(noise, tiny),
+                         band=cells.mean(axis=1) / max(noise, tiny),
+                         line_threshold=gamma_isf(looks, p / cells.size) / looks,
+                         band_threshold=gamma_isf(band_looks, p / n_gate) / band_looks,
+                         false_alarm_probability=false_alarm_probability)
+
+
+def detect(stats, test, *, max_targets, zero_pad=1):
+    """Gate bins that pass ``test`` (a :class:`DetectionTest`) and are local maxima of its score, strongest first.
+
+    Bins closer than ``MIN_SEPARATION_BINS`` to a stronger detection, or with moving power
+    ``SIDELOBE_DB`` below the strongest detection's (its range sidelobes), are left out.
+    """
+    score, power = test.score, stats.gate_moving_power
+    if len(score) < 3 or test.noise_cell <= 0:
         return []
+    floor = max(noise_power(stats), np.finfo(float).tiny)
     separation = MIN_SEPARATION_BINS * zero_pad
-    order = np.argsort(power)[::-1]
     found = []
-    for index in order:
-        if power[index] < floor * 10 ** (detection_db / 10):
+    for index in np.argsort(score)[::-1]:
+        if score[index] < 1:
             break
+        if score[index] < max(score[max(index - 1, 0)], score[min(index + 1, len(score) - 1)]):
+            continue
         if found and power[index] < power[found[0]] * 10 ** (-SIDELOBE_DB / 10):
-            break
-        left, right = power[max(index - 1, 0)], power[min(index + 1, len(power) - 1)]
-        if power[index] < max(left, right) or any(abs(index - f) < separation for f in found):
+            continue
+        if any(abs(index - f) < separation for f in found):
             continue
         found.append(index)
         if len(found) == max_targets:
             break
     return [Detection(int(i), int(stats.gate_bins[i]), float(stats.gate_range_m[i]),
-                      float(10 * np.log10(power[i] / floor))) for i in found]
+                      float(10 * np.log10(max(power[i], np.finfo(float).tiny) / floor))) for i in found]
 
 
 def manual_detection(stats, range_m, *, gate_m, params, zero_pad=1):
