@@ -71,6 +71,8 @@ class DetectionTest:
         What noise alone exceeds anywhere in the gate with probability ``false_alarm_probability / 2`` each.
     false_alarm_probability : float
         Per capture (noise only, over all bins and cells).
+    looks, band_looks : int
+        Shapes n and m of the Gamma laws of a cell and of a bin's band mean (see :func:`detection_test`).
     """
 
     noise_cell: float
@@ -79,6 +81,8 @@ class DetectionTest:
     line_threshold: float
     band_threshold: float
     false_alarm_probability: float
+    looks: int
+    band_looks: int
 
     @property
     def score(self):
@@ -136,7 +140,7 @@ def detection_test(stats, *, false_alarm_probability=FALSE_ALARM_PROBABILITY):
                          band=cells.mean(axis=1) / max(noise, tiny),
                          line_threshold=gamma_isf(looks, p / cells.size) / looks,
                          band_threshold=gamma_isf(band_looks, p / n_gate) / band_looks,
-                         false_alarm_probability=false_alarm_probability)
+                         false_alarm_probability=false_alarm_probability, looks=looks, band_looks=band_looks)
 
 
 def detect(stats, test, *, max_targets, zero_pad=1):
