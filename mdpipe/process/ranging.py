@@ -285,7 +285,7 @@ def slow_time(reader, tracks, weights, *, window="hann", zero_pad=1, chunk_chirp
         columns = [fine_columns(track[first:stop]) for track in tracks]
         grid = np.concatenate(columns)
         if all_bins:
-            centre = np.exp(-2j * np.pi * grid * (n - 1) / 2 / n_fft)  # phase reference to the middle sample
+            centre = np.exp(1j * np.pi * grid * (n - 1) / n_fft)  # phase reference to the middle sample
             x = np.conj(np.fft.rfft(counts.astype(real) * win, n=n_fft, axis=-1)[..., grid] * centre)
         else:
             x = transform(counts, dft_matrix(n, grid / FINE_STEPS, window=window, zero_pad=zero_pad, dtype=real),
