@@ -67,8 +67,8 @@ def snr_limit(work, target, chirp_period_s, dwell_s, snrs, seeds):
     for snr in snrs:
         hits = 0
         for seed in seeds:
-            mapping = {"radar": XBAND | {"chirp_period_s": chirp_period_s, "n_chirps": int(round(dwell_s / chirp_period_s))},
-                       "targets": [target], "noise": {"snr_db": float(snr)}, "seed": seed}
+            radar = XBAND | {"chirp_period_s": chirp_period_s, "n_chirps": int(round(dwell_s / chirp_period_s))}
+            mapping = {"radar": radar, "targets": [target], "noise": {"snr_db": float(snr)}, "seed": seed}
             result, truth = run(mapping, work / "target.h5")
             hits += any(abs(d.bin - truth["targets"][0]["range_bin"]) <= 1 for d in result.detections)
         if hits < len(seeds):

@@ -36,7 +36,7 @@ def tracked_signal(path, process=ProcessParams()):
 
 
 def off_line_fraction(signal, prf_hz):
-    """Share of the dwell energy more than LINE_HALF_WIDTH_BINS Doppler bins from the strongest line, and its Doppler."""
+    """Share of the dwell energy beyond LINE_HALF_WIDTH_BINS Doppler bins from the strongest line, and its Doppler."""
     spectrum = power_spectrum(signal, prf_hz=prf_hz)
     n, peak = len(spectrum.power), int(np.argmax(spectrum.power))
     distance = np.abs((np.arange(n) - peak + n // 2) % n - n // 2)
