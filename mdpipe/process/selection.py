@@ -281,7 +281,7 @@ def fractional_track(stats, path, *, window, n_samples, zero_pad=1):
     offset = np.interp(ratio, ratio_table, d_table)
     offset[(k == 0) | (k == n_gate - 1)] = 0.0  # a neighbour outside the gate: no estimate
     position = running_median(k + offset, min(5, n_chunks) | 1)
-    half = (min(SMOOTH_CHUNKS, n_chunks) | 1) // 2  # fewer chunks than SMOOTH_CHUNKS: still fewer than 2 half + 1
+    half = (min(SMOOTH_CHUNKS, n_chunks) | 1) // 2  # odd window, at most one chunk longer than the track
     position = moving_average(np.pad(position, half, mode="reflect", reflect_type="odd"), 2 * half + 1)
     return np.clip(position[half:half + n_chunks], 0, n_gate - 1)
 
