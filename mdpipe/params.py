@@ -183,8 +183,8 @@ class ProcessParams:
         Analyse this range (manual bin choice) instead of detecting.
     max_targets : int
         Most targets reported per capture.
-    detection_db : float
-        A bin is a target when its moving power exceeds the gate's noise level by this much.
+    false_alarm_probability : float
+        Probability that noise alone gives a detection in a capture (range-Doppler CFAR thresholds).
     elevation_deg : float or None
         Elevation beta of the rotor plane (Eq. 6), for the blade-length inversion; None: not known,
         0 assumed and said so (the echo gives r cos(beta) only).
@@ -215,7 +215,7 @@ class ProcessParams:
     max_range_m: float = 200.0
     range_m: Optional[float] = None
     max_targets: int = 4
-    detection_db: float = 12.0
+    false_alarm_probability: float = 1e-3
     elevation_deg: Optional[float] = None
     n_blades: Optional[int] = None
     threshold_db: float = 20.0
@@ -237,6 +237,8 @@ class ProcessParams:
             raise ParameterError(f"min_range_m={self.min_range_m!r} must lie in [0, max_range_m={self.max_range_m!r})")
         if self.range_m is not None:
             require_positive(range_m=self.range_m)
+        if not 0 < self.false_alarm_probability < 1:
+            raise ParameterError(f"false_alarm_probability={self.false_alarm_probability!r} must lie in (0, 1)")
         if self.elevation_deg is not None and not -90 <= self.elevation_deg <= 90:
             raise ParameterError(f"elevation_deg={self.elevation_deg!r} must lie in [-90, 90]")
         if self.n_blades is not None and (int(self.n_blades) != self.n_blades or self.n_blades < 1):

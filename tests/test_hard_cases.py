@@ -59,7 +59,8 @@ def test_elevation_sweep(tmp_path, beta):
         right_or_flagged(row, "blade_length_m", 0.12, 0.03, "rotation harmonics", "elevation")
     if beta > 80.0:
         assert row["blade_length_m"] is None
-        assert "not estimable" in row["notes"] or "no moving target" in row["notes"]
+        # the blades' small Doppler (cos 85-89 deg) is detected over a 0.2 s dwell; their flashes are not resolved
+        assert any(reason in row["notes"] for reason in ("not estimable", "no moving target", "no periodic blade flashes"))
 
 
 def test_face_on_rotor_at_90_degrees(tmp_path):

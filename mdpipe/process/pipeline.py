@@ -12,6 +12,7 @@ from mdpipe.process.classify import classify
 from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analyse_target
 
 MIN_CHIRPS = 64
+TRACK_POINTS = 256  # range track points kept per target (for its range rate and extent)
 
 
 @dataclass
@@ -34,23 +35,33 @@ class CaptureResult:
     process: object
 
 
-def _target_signals(reader, stats, detections, process):
-    """Pass 2: each detection's gate path, its slow time (followed across bins, stitched) and RX gain (dB).
+def target_signals(reader, stats, detections, process):
+    """Pass 2: each detection's slow time along its fractional range track, and where it went.
 
-    The gain is that of coherent combining in the bin where the target spent most chunks.
+    The channels are combined with one weight vector per target, the dominant eigenvector of the
+    moving covariance summed over the bins it visits (chunk-weighted): one spatial signature, so
+    no weight change along the track.
+
+    Returns
+    -------
+    list of (:class:`~mdpipe.process.features.RangeTrack`, signal (n_chirps,) complex, rx_gain_db)
     """
-    paths = [selection.track(stats, d) for d in detections]
-    used = sorted({int(g) for path in paths for g in path})
-    weights, gains = selection.channel_weights(stats.covariance[used])
-    columns = ranging.slow_time(reader, stats.gate_bins[used], weights, window=process.range_window,
+    tracks, weights, gains = [], [], []
+    for detection in detections:
+        track_bins, visits = selection.chirp_track(stats, detection, window=process.range_window,
+                                                   n_samples=reader.params.n_samples, zero_pad=process.zero_pad)
+        weight, gain = selection.channel_weights(np.tensordot(visits, stats.covariance, axes=1)[None])
+        tracks.append(track_bins)
+        weights.append(weight[0])
+        gains.append(float(gain[0]))
+    signals = ranging.slow_time(reader, np.array(tracks), np.array(weights), window=process.range_window,
                                 zero_pad=process.zero_pad, dtype=process.dtype, all_bins=process.range_bins == "all")
-    column_of = {g: i for i, g in enumerate(used)}
-    targets = []
-    for path in paths:
-        mapped = np.array([column_of[int(g)] for g in path])
-        targets.append((path, selection.stitch(columns, mapped, process.chunk_chirps),
-                        float(gains[np.bincount(mapped).argmax()])))
-    return targets
+    params = reader.params
+    every = max(1, stats.n_chirps // TRACK_POINTS)
+    t_s = np.arange(0, stats.n_chirps, every) / params.prf_hz
+    return [(RangeTrack(t_s=t_s, range_m=ranging.bin_range_m(track_bins[::every], params, process.zero_pad),
+                        bin_m=params.range_bin_m), signals[:, i], gain)
+            for i, (track_bins, gain) in enumerate(zip(tracks, gains))]
 
 
 def _base_row(path, stats, process, params):
@@ -63,6 +74,16 @@ def _base_row(path, stats, process, params):
         "wavelength_m": params.wavelength_m, "prf_hz": params.prf_hz, "dwell_s": params.duration_s(stats.n_chirps),
         "mdpipe_version": __version__,
     }
+
+
+def no_detection_note(test, process):
+    """Why nothing was detected: the strongest line and band against their thresholds (dB over the noise)."""
+    def db(x):
+        return 10 * np.log10(max(x, np.finfo(float).tiny))
+    return (f"no moving target above the noise in {process.min_range_m:g}-{process.max_range_m:g} m at a false-alarm "
+            f"probability of {test.false_alarm_probability:g} per capture (strongest Doppler line "
+            f"{db(test.line.max()):.1f} dB < {db(test.line_threshold):.1f} dB, strongest band "
+            f"{db(test.band.max()):.1f} dB < {db(test.band_threshold):.1f} dB, over the noise per cell)")
 
 
 def process_capture(path, process, *, frame_counter="auto", overrides=None, allow_external=False):
@@ -82,17 +103,18 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         if n_gate < 3:
             raise ParameterError(f"{path}: the range gate [{process.min_range_m:g}, {process.max_range_m:g}] m holds "
                                  f"{n_gate} bin(s) of {params.range_bin_m:.3g} m; widen it")
+        max_range_m = min(process.max_range_m, params.max_range_m)
         stats = ranging.gate_statistics(reader, window=process.range_window, zero_pad=process.zero_pad,
-                                        min_range_m=process.min_range_m,
-                                        max_range_m=min(process.max_range_m, params.max_range_m),
+                                        min_range_m=process.min_range_m, max_range_m=max_range_m,
                                         chunk_chirps=process.chunk_chirps)
         if reader.constant_description():
             raise ParameterError(f"{path}: {reader.constant_description()}; the recording holds no signal")
         if process.range_m is not None:
-            detections = [selection.manual_detection(stats, process.range_m)]
+            detections = [selection.manual_detection(stats, process.range_m, gate_m=(process.min_range_m, max_range_m),
+                                                     params=params, zero_pad=process.zero_pad)]
         else:
-            detections = selection.detect(stats, detection_db=process.detection_db, max_targets=process.max_targets,
-                                          zero_pad=process.zero_pad)
+            test = selection.detection_test(stats, false_alarm_probability=process.false_alarm_probability)
+            detections = selection.detect(stats, test, max_targets=process.max_targets, zero_pad=process.zero_pad)
         noise = selection.noise_power(stats) / params.n_channels
         capture_notes = list(reader.warnings)
         if stats.clipped_fraction > 0:
@@ -101,25 +123,18 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         rows, analyses = [], []
         if not detections:
             row = _base_row(path, stats, process, params)
-            power = stats.gate_moving_power
-            strongest = 10 * np.log10(power.max() / noise / params.n_channels) if noise > 0 else 0.0
-            row["notes"] = "; ".join([f"no moving target above the noise in {process.min_range_m:g}-"
-                                      f"{process.max_range_m:g} m (strongest bin {strongest:.1f} dB < "
-                                      f"{process.detection_db:g} dB)"] + capture_notes)
+            row["notes"] = "; ".join([no_detection_note(test, process)] + capture_notes)
             return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row],
                                  noise_power=noise, process=process)
-        targets = _target_signals(reader, stats, detections, process)
+        targets = target_signals(reader, stats, detections, process)
         layout = reader.layout.describe()
-    for index, (detection, (path_gates, signal, rx_gain_db)) in enumerate(zip(detections, targets)):
-        ranges = stats.gate_range_m[path_gates]
-        chunk_s = process.chunk_chirps / params.prf_hz
-        track = RangeTrack(t_s=(np.arange(len(ranges)) + 0.5) * chunk_s, range_m=ranges,
-                           bin_m=params.range_bin_m / process.zero_pad)
+    for index, (detection, (track, signal, rx_gain_db)) in enumerate(zip(detections, targets)):
         analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
                                   noise_power=noise, params=process, track=track)
+        range_min_m, range_max_m = float(track.range_m.min()), float(track.range_m.max())
         row = _base_row(path, stats, process, params)
         row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),
-                   range_min_m=float(ranges.min()), range_max_m=float(ranges.max()), rx_gain_db=rx_gain_db)
+                   range_min_m=range_min_m, range_max_m=range_max_m, rx_gain_db=rx_gain_db)
         row.update(analysis.row)
         label, reason = classify(row, detected=True)
         row["class"] = label

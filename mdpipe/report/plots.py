@@ -16,7 +16,7 @@ import numpy as np  # noqa: E402
 from mdpipe.params import FigureParams  # noqa: E402
 from mdpipe.physics.radar import doppler_hz, range_rate_from_doppler_mps  # noqa: E402
 from mdpipe.physics.rotor import flashes_per_revolution  # noqa: E402
-from mdpipe.process import spectral  # noqa: E402
+from mdpipe.process import selection, spectral  # noqa: E402
 from mdpipe.process.classify import DRONE_SPREAD_MPS  # noqa: E402
 from mdpipe.process.doppler import noise_level_per_bin  # noqa: E402
 from mdpipe.process.features import MAX_REV_PER_S, MIN_REV_PER_S  # noqa: E402
@@ -156,9 +156,12 @@ def range_figure(result, path):
     ax.axvspan(0, edges[0], color="0.85", lw=0, zorder=0, label=f"not searched (gate {gate[0]:.3g}-{gate[-1]:.4g} m)")
     if edges[1] < x_max:
         ax.axvspan(edges[1], x_max, color="0.85", lw=0, zorder=0)
-    if process.range_m is None:
-        ax.hlines(process.detection_db, edges[0], min(edges[1], x_max), color="C3", ls="--", lw=1,
-                  label=f"detection threshold: noise + {process.detection_db:g} dB")
+    if process.range_m is None:  # the band test's threshold on the mean over Doppler; lines are tested per cell
+        test = selection.detection_test(stats, false_alarm_probability=process.false_alarm_probability)
+        level = 10 * np.log10(test.band_threshold)
+        ax.hlines(level, edges[0], min(edges[1], x_max), color="C3", ls="--", lw=1,
+                  label=f"band-test threshold: noise + {level:.2g} dB (false alarms "
+                        f"{process.false_alarm_probability:g} per capture; Doppler lines tested per cell)")
     else:
         ax.plot([], [], " ", label=f"range chosen with --range-m {process.range_m:g} (no detection)")
     for index, d in enumerate(result.detections):
