@@ -268,8 +268,10 @@ def slow_time(reader, tracks, weights, *, window="hann", zero_pad=1, chunk_chirp
         Take the full FFT (``FINE_STEPS`` times more padded) and pick the grid columns, instead of
         the DFT at those columns only.
 
-    Where a track moves less than ``STILL_FINE_STEPS / FINE_STEPS`` bin over a read (a hovering
-    target), the DFT is evaluated at one column, its mean position there (half the GEMM of two
+    The static part of each column (the mean chirp's transform) is taken out along the same track,
+    so static clutter near a moving target's path leaves no line. Where a track moves less than
+    ``STILL_FINE_STEPS / FINE_STEPS`` bin over a read (a hovering target), the DFT is evaluated at one
+    column, its mean position there (half the GEMM of two
     grid columns): the position then steps by less than 1/64 bin between reads, an amplitude
     change below 1e-3 near the response's peak and no phase step.
 
@@ -286,26 +288,50 @@ def slow_time(reader, tracks, weights, *, window="hann", zero_pad=1, chunk_chirp
     w = np.asarray(weights) * params.full_scale_v_per_lsb
     out = np.empty((reader.n_chirps, len(tracks)), dtype=np.result_type(real, np.complex64))
 
-    def chunk(first):
-        counts = read_reused(reader, first, min(first + chunk_chirps, reader.n_chirps))
-        stop = first + counts.shape[1]
+    plans, sums = {}, []
+
+    def columns_of(first, stop):
         parts = [track[first:stop] for track in tracks]
         still = [not all_bins and np.ptp(part) * FINE_STEPS < STILL_FINE_STEPS for part in parts]
         columns = [np.array([part.mean() * FINE_STEPS]) if fixed else fine_columns(part)
                    for part, fixed in zip(parts, still)]
-        grid = np.concatenate(columns)
-        if all_bins:
-            centre = np.exp(1j * np.pi * grid * (n - 1) / n_fft)  # phase reference to the middle sample
-            x = np.conj(np.fft.rfft(counts.astype(real) * win, n=n_fft, axis=-1)[..., grid.astype(int)] * centre)
-        else:
-            x = transform(counts, dft_matrix(n, grid / FINE_STEPS, window=window, zero_pad=zero_pad, dtype=real),
-                          real)
+        return parts, still, columns
+
+    def along_tracks(x, first, stop):
+        """Each target's slow time from the grid columns ``x`` (C, M, K) of chirps ``first .. stop``."""
+        parts, still, columns = plans[first]
         start = 0
         for t, (part, cols, fixed) in enumerate(zip(parts, columns, still)):
             combined = np.einsum("cmk,c->mk", x[:, :, start:start + len(cols)], w[t])
-            out[first:stop, t] = combined[:, 0] if fixed else blend(combined, cols[0], part)
+            if combined.shape[0] != stop - first:  # the static profile, one row for every chirp
+                combined = np.broadcast_to(combined, (stop - first, combined.shape[1]))
+            yield t, combined[:, 0] if fixed else blend(combined, cols[0], part)
             start += len(cols)
+
+    def grid_transform(counts, grid):
+        if all_bins:
+            centre = np.exp(1j * np.pi * grid * (n - 1) / n_fft)  # phase reference to the middle sample
+            return np.conj(np.fft.rfft(counts.astype(real) * win, n=n_fft, axis=-1)[..., grid.astype(int)] * centre)
+        return transform(counts, dft_matrix(n, grid / FINE_STEPS, window=window, zero_pad=zero_pad, dtype=real), real)
+
+    def chunk(first):
+        counts = read_reused(reader, first, min(first + chunk_chirps, reader.n_chirps))
+        stop = first + counts.shape[1]
+        sums.append(counts.sum(axis=1, dtype=np.float64))
+        plans[first] = columns_of(first, stop)
+        x = grid_transform(counts, np.concatenate(plans[first][2]))
+        for t, signal in along_tracks(x, first, stop):
+            out[first:stop, t] = signal
 
     with threadpool_limits(limits=1, user_api="blas"), ThreadPoolExecutor(WORKERS) as pool:
         list(pool.map(chunk, range(0, reader.n_chirps, chunk_chirps)))
+    # Static clutter is constant in each range column, but not along a moving track: the blend of
+    # columns would modulate it into a moving line. Its part, the mean chirp taken along the same
+    # columns and blend, is subtracted.
+    mean = (np.sum(sums, axis=0) / reader.n_chirps)[:, None, :]
+    for first in plans:
+        stop = min(first + chunk_chirps, reader.n_chirps)
+        x = grid_transform(mean, np.concatenate(plans[first][2]))
+        for t, static in along_tracks(x, first, stop):
+            out[first:stop, t] -= static
     return out
