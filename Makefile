@@ -56,20 +56,16 @@ bench-scale: $(MDPIPE)
 paper: $(MDPIPE)
 	$(MDPIPE) paper --out reports
 
-# Every capture under IN, processed in parallel (make -j4 batch IN=captures OUT=results). A capture is
-# processed again only when it is newer than its table; one that fails leaves OUT/<stem>.error.txt and
-# the others go on; `mdpipe summarize` then gathers OUT/features.csv and lists the failures.
+# Every capture under IN (a folder, searched recursively), processed by JOBS worker processes into OUT
+# (make batch IN=captures OUT=results JOBS=4 ARGS="--blades 3"). Only captures whose input, options or
+# mdpipe version changed are redone (OUT/manifest.json); see `mdpipe batch --help`.
 IN ?= data_samples
 OUT ?= out/batch
-CAPTURES := $(shell find $(IN) -name '*.h5' 2>/dev/null)
-TABLES := $(patsubst $(IN)/%.h5,$(OUT)/%.features.csv,$(CAPTURES))
+JOBS ?= 2
+ARGS ?=
 
-batch: $(TABLES)
-	$(MDPIPE) summarize $(OUT)
-
-$(OUT)/%.features.csv: $(IN)/%.h5 | $(MDPIPE)
-	@mkdir -p $(@D)
-	-$(MDPIPE) process $< --out $(@D) > /dev/null
+batch: $(MDPIPE)
+	$(MDPIPE) batch "$(IN)" --out "$(OUT)" -j $(JOBS) $(ARGS)
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache

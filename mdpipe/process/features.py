@@ -264,5 +264,9 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     window, hop = display_window_s(row, params)
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
     row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
+    for name, asked, used in (("window", params.stft_window_s, shown.window_s), ("hop", params.stft_hop_s, shown.hop_s)):
+        if asked is not None and abs(used - asked) > 0.5 / prf_hz:  # more than the rounding to whole chirps
+            notes.append(f"spectrogram {name} {asked:g} s asked, {used:.4g} s used (the window spans 8 chirps to "
+                         f"half the dwell of {dwell_s:.4g} s, the hop at least one chirp of {1 / prf_hz:.4g} s)")
     return TargetAnalysis(row=row, spectrum=plain, spectrogram=shown, paper_extent_hz=extent,
                           flash_edges_hz=edges, notes=notes)
