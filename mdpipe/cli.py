@@ -30,7 +30,7 @@ class InputError(click.ClickException):
     exit_code = EXIT_FAILED
 
 
-class UsageError(click.UsageError):
+class UsageError(click.ClickException):
     """A bad option value, input or output folder, named in one line; exit code 1."""
 
     exit_code = EXIT_USAGE
@@ -65,6 +65,8 @@ class Group(click.Group):
             raise
         except MdpipeError as exc:
             raise InputError(str(exc)) from None
+        except OSError as exc:  # outside any one capture's work: writing a summary, a folder that vanished
+            raise InputError(" ".join(str(exc).split())) from None
         except KeyboardInterrupt:
             click.echo("Interrupted.", err=True)
             raise click.exceptions.Exit(EXIT_INTERRUPTED) from None
@@ -269,7 +271,7 @@ def _run(jobs, *, on_outcome, debug, progress=None, **kwargs):
             progress.update(outcome)
 
     try:
-        return runner.run(jobs, on_outcome=report, on_wait=lambda text: click.echo(text, err=True), **kwargs)
+        return runner.run(jobs, on_outcome=report, notify=lambda text: click.echo(text, err=True), **kwargs)
     except MdpipeError as exc:
         raise UsageError(str(exc)) from None
     finally:
@@ -374,6 +376,12 @@ def _gather(folder, *, figures):
     return len(errors)
 
 
+def _import_summary_modules():
+    import pandas  # noqa: F401
+
+    import mdpipe.report.plots  # noqa: F401
+
+
 @main.command()
 @click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False, path_type=Path),
@@ -397,6 +405,8 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
     if scheduler is not None and scheduler != "local" and "://" not in scheduler:
         raise UsageError(f"--scheduler {scheduler!r}: give 'local' or an address such as tcp://HOST:8786")
     jobs = _jobs(inputs, out_dir, options, figures=not no_figures)
+    if not no_figures:  # the summary figure's imports (2 s), here while the workers start
+        threading.Thread(target=_import_summary_modules, daemon=True).start()
     progress = Progress(len(jobs), sys.stderr) if sys.stderr.isatty() else None
     counts = {"done": 0, "failed": 0, "up to date": 0}
 

@@ -37,9 +37,9 @@ def _client(scheduler, workers):
 
 def execute(jobs, *, scheduler, workers):
     """Yield the :class:`mdpipe.batch.unit.Outcome` of every job as it finishes on the cluster."""
+    client, cluster = _client(scheduler, workers)
     from distributed import as_completed
 
-    client, cluster = _client(scheduler, workers)
     token = secrets.token_hex(4)
     futures, finished = {}, False
     try:

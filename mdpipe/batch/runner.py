@@ -119,17 +119,26 @@ def execute(jobs, *, workers=1, scheduler=None):
         yield from _pool(jobs, workers)
 
 
-def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, on_wait=None):
+def _save(out_dir, records, notify):
+    try:
+        manifest.save(out_dir, records)
+    except OSError as exc:  # the outputs stand; the next run redoes what the manifest could not record
+        if notify is not None:
+            notify(f"Warning: cannot write {Path(out_dir) / manifest.MANIFEST_NAME} ({exc}); the next run will "
+                   "redo the captures it does not list")
+
+
+def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify=None):
     """Run ``jobs`` (all with one ``out_dir``, or None) under OUT's lock; returns their outcomes.
 
     With ``track`` the manifest decides what is redone and is updated as captures finish; without, the
     manifest forgets the captures published (they were made with other settings). Temporary folders left by an
-    earlier interrupted or killed run are removed first.
+    earlier interrupted or killed run are removed first. ``notify(text)`` hears of waits and warnings.
     """
     out_dir = jobs[0].out_dir if jobs else None
     if out_dir is None:
         return [_report(outcome, on_outcome) for outcome in execute(jobs, workers=workers, scheduler=scheduler)]
-    with locked(out_dir, on_wait):
+    with locked(out_dir, notify):
         tables.remove_partials(out_dir)
         records = manifest.load(out_dir)
         if track:
@@ -143,12 +152,12 @@ def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, on_wai
                     else:
                         records.pop(outcome.key, None)
                     if track and time.monotonic() - saved_at > MANIFEST_INTERVAL_S:
-                        manifest.save(out_dir, records)
+                        _save(out_dir, records, notify)
                         saved_at = time.monotonic()
                     outcomes.append(_report(outcome, on_outcome))
         finally:
             if track or (Path(out_dir) / manifest.MANIFEST_NAME).exists():
-                manifest.save(out_dir, records)
+                _save(out_dir, records, notify)
             if scheduler is None:
                 tables.remove_partials(out_dir)
     return outcomes
