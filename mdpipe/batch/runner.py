@@ -11,7 +11,9 @@ import contextlib
 import fcntl
 import multiprocessing
 import os
+import select
 import signal
+import threading
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from concurrent.futures.process import BrokenProcessPool
@@ -57,8 +59,28 @@ def locked(out_dir, on_wait=None):
         os.close(fd)  # releases the lock
 
 
-def _start_worker():
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole process group; the parent decides
+def _watch(parent_pid):
+    """Exit as soon as the process ``parent_pid`` has gone (killed by SIGKILL, say): a pool worker holds its
+    own queue's write end and would otherwise wait for work forever."""
+    try:
+        fd = os.pidfd_open(parent_pid)
+        select.select([fd], [], [])
+    except (AttributeError, OSError):  # no pidfd (not Linux >= 5.3): poll
+        while True:
+            time.sleep(0.5)
+            try:
+                os.kill(parent_pid, 0)
+            except ProcessLookupError:
+                break
+            except PermissionError:
+                continue
+    os._exit(1)
+
+
+def _start_worker(parent_pid):
+    """Ctrl-C reaches the whole process group: the parent decides. A worker ends with the batch's process."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(target=_watch, args=(parent_pid,), daemon=True).start()
 
 
 def _stop_workers(executor):
@@ -71,7 +93,8 @@ def _pool_round(jobs, workers):
     """Yield the outcomes of ``jobs`` from one pool; return the jobs lost when a worker died."""
     context = multiprocessing.get_context("forkserver")
     context.set_forkserver_preload(PRELOAD + (PRELOAD_FIGURES if any(job.figures for job in jobs) else []))
-    executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_start_worker)
+    executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_start_worker,
+                                   initargs=(os.getpid(),))
     finished, lost = False, []
     try:
         futures = {executor.submit(unit.run, job): job for job in jobs}
