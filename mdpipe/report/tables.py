@@ -149,9 +149,12 @@ def remove_partials(folder):
                     os.remove(os.path.join(root, name))
 
 
+SIGNIFICANT_DIGITS = 15  # every double holds 15: 1 / 40e-6 = 24999.999999999996 is written 25000.0
+
+
 def _clean(value):
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
+    if isinstance(value, float):
+        return float(f"{value:.{SIGNIFICANT_DIGITS}g}") if math.isfinite(value) else None
     if hasattr(value, "item"):
         return _clean(value.item())
     return value
