@@ -65,8 +65,12 @@ class Group(click.Group):
             raise
         except MdpipeError as exc:
             raise InputError(str(exc)) from None
+        except (click.ClickException, click.exceptions.Exit, click.exceptions.Abort):
+            raise
         except OSError as exc:  # outside any one capture's work: writing a summary, a folder that vanished
             raise InputError(" ".join(str(exc).split())) from None
+        except Exception as exc:  # an input nobody foresaw, or a bug: one line all the same
+            raise InputError(f"internal error, {type(exc).__name__}: {' '.join(str(exc).split())}") from None
         except KeyboardInterrupt:
             click.echo("Interrupted.", err=True)
             raise click.exceptions.Exit(EXIT_INTERRUPTED) from None

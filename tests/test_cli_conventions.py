@@ -106,6 +106,7 @@ def test_numbers_for_people_at_their_resolution():
     assert _summary_line(row).endswith("v 0.001 m/s")
     assert _summary_line({**row, "dwell_s": 0.25}).endswith("v 0.00 m/s")  # 0.061 m/s resolution, no "-0.00"
     assert tables.to_resolution(-0.0007, 0.061) == "0.00"
+    assert tables.to_resolution(0.0007981, 1e-300) == "0.0007981"  # an absurd dwell: no 300 decimals
     record = json.loads(invoke("process", SAMPLES / "phantom4_xband.h5", "--json").stdout)
     assert record["prf_hz"] == 25000.0  # 1 / 40e-6 in doubles is 24999.999999999996
 

@@ -264,8 +264,13 @@ def _published(folder, suffix):
             if not any(part.startswith(PARTIAL_PREFIX) for part in p.relative_to(folder).parts)]
 
 
+MAX_DECIMALS = 6
+
+
 def to_resolution(value, resolution):
-    """``value`` as text with the decimals its ``resolution`` supports (0.0007981 at 0.094 -> ``0.00``)."""
-    decimals = max(0, -math.floor(math.log10(resolution))) if resolution > 0 and math.isfinite(resolution) else 3
-    text = f"{value:.{decimals}f}"
+    """``value`` as text with the decimals its ``resolution`` supports (0.0007981 at 0.094 -> ``0.00``); four
+    significant digits when the resolution is finer than 1e-6 or unknown."""
+    if not (math.isfinite(resolution) and resolution > 0) or resolution < 10 ** -MAX_DECIMALS:
+        return f"{value:.4g}"
+    text = f"{value:.{max(0, -math.floor(math.log10(resolution)))}f}"
     return text.lstrip("-") if float(text) == 0 else text
