@@ -98,6 +98,18 @@ def display_window_s(row, params):
     return window, hop
 
 
+def display_adjustments(params, shown, *, prf_hz, dwell_s):
+    """A note for each spectrogram setting the user gave that ``shown`` (:class:`doppler.Spectrogram`) could not
+    take as asked: beyond the rounding to whole chirps, a window outside 8 chirps to half the dwell, a hop
+    under one chirp (none is clamped silently)."""
+    notes = []
+    for name, asked, used in (("window", params.stft_window_s, shown.window_s), ("hop", params.stft_hop_s, shown.hop_s)):
+        if asked is not None and abs(used - asked) > 0.5 / prf_hz:
+            notes.append(f"spectrogram {name} {asked:g} s asked, {used:.4g} s used (the window spans 8 chirps to "
+                         f"half the dwell of {dwell_s:.4g} s, the hop at least one chirp of {1 / prf_hz:.4g} s)")
+    return notes
+
+
 def _speed_mps(doppler_hz_, wavelength_m):
     return float(-range_rate_from_doppler_mps(doppler_hz_, wavelength_m=wavelength_m))
 
@@ -264,9 +276,6 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params):
     window, hop = display_window_s(row, params)
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
     row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
-    for name, asked, used in (("window", params.stft_window_s, shown.window_s), ("hop", params.stft_hop_s, shown.hop_s)):
-        if asked is not None and abs(used - asked) > 0.5 / prf_hz:  # more than the rounding to whole chirps
-            notes.append(f"spectrogram {name} {asked:g} s asked, {used:.4g} s used (the window spans 8 chirps to "
-                         f"half the dwell of {dwell_s:.4g} s, the hop at least one chirp of {1 / prf_hz:.4g} s)")
+    notes.extend(display_adjustments(params, shown, prf_hz=prf_hz, dwell_s=dwell_s))
     return TargetAnalysis(row=row, spectrum=plain, spectrogram=shown, paper_extent_hz=extent,
                           flash_edges_hz=edges, notes=notes)
