@@ -208,6 +208,32 @@ def test_an_output_folder_mdpipe_did_not_write_is_left_alone(tmp_path):
     assert (folder / "gull_flyby" / "notes.txt").read_text() == "mine" and (folder / "gull_flyby.h5").exists()
 
 
+class KillsItsWorker(dict):
+    """Reader options whose unpickling ends the worker process at once, as a segfault would."""
+
+    def __reduce__(self):
+        return os._exit, (1,)
+
+
+def test_a_worker_that_dies_fails_only_its_capture(tmp_path):
+    from dataclasses import replace
+
+    from mdpipe.batch import runner
+    from mdpipe.params import ProcessParams
+
+    good = [unit.Job(str(SAMPLES / name), Path(name).stem, str(tmp_path), ProcessParams(),
+                     {"frame_counter": "auto", "overrides": {}}, figures=False)
+            for name in ("phantom4_xband.h5", "gull_flyby.h5", "clutter_only.h5")]
+    dying = replace(good[1], key="dies", reader=KillsItsWorker())
+    outcomes = {o.key: o for o in runner.run([good[0], dying, good[1], good[2]], workers=2, track=True)}
+    assert {key: o.status for key, o in outcomes.items()} == {
+        "phantom4_xband": "done", "gull_flyby": "done", "clutter_only": "done", "dies": "failed"}
+    assert outcomes["dies"].message == (f"{SAMPLES / 'gull_flyby.h5'}: its worker process died (killed by the system, "
+                                        "out of memory say, or a crash inside a library)")
+    assert (tmp_path / "dies" / "gull_flyby.error.txt").exists()
+    assert sorted(manifest.load(tmp_path)) == ["clutter_only", "gull_flyby", "phantom4_xband"]  # redone next run
+
+
 def test_dask_missing_is_one_line(tmp_path, monkeypatch):
     monkeypatch.setitem(__import__("sys").modules, "distributed", None)
     result = batch(SAMPLES / "gull_flyby.h5", "--out", tmp_path / "out", "--scheduler", "local")

@@ -3,8 +3,8 @@ manifest and lock.
 
 One process pool (``concurrent.futures.ProcessPoolExecutor``, ``forkserver`` start with mdpipe's processing
 modules preloaded, so the imports are paid once, not once per capture or worker). A worker that dies (a
-segfault, the out-of-memory killer) breaks the pool: the captures it lost are run again in a fresh pool, and
-those lost a second time one at a time, so that the one that kills its worker is named and the rest finish.
+segfault, the out-of-memory killer) breaks the pool: the captures it lost are run again one at a time, each
+in a fresh worker, so that the one that kills its worker is named (and failed) and the rest finish.
 """
 
 import contextlib
@@ -119,8 +119,8 @@ def _pool(jobs, workers):
         round_jobs, queue = (queue[:1], queue[1:]) if alone else (queue, [])
         lost = yield from _pool_round(round_jobs, 1 if alone else min(workers, len(round_jobs)))
         if lost and alone:
-            yield unit.failure(lost[0], f"{lost[0].capture}: its worker process died (killed, or a crash in a "
-                                        "library); nothing was published")
+            yield unit.failure(lost[0], f"{lost[0].capture}: its worker process died (killed by the system, out "
+                                        "of memory say, or a crash inside a library)")
         elif lost:
             alone, queue = True, lost + queue
 
