@@ -122,6 +122,14 @@ def test_manifest_redoes_exactly_what_changed(tmp_path, captures):
     shutil.rmtree(out / "day2/x")  # outputs removed by hand: redone
     assert "1 processed, 2 up to date" in batch(captures, "--out", out, "-j", 1, "--no-figures", "--blades", 3).output
 
+    other = tmp_path / "other"  # another folder with a day2/x.h5, into the same OUT: redone, and said
+    (other / "day2").mkdir(parents=True)
+    shutil.copy(captures / "day2/x.h5", other / "day2/x.h5")
+    result = batch(other, "--out", out, "-j", 1, "--no-figures", "--blades", 3)
+    assert "1 captures: 1 processed, 0 up to date" in result.output
+    assert result.stderr == (f"Warning: {out / 'day2/x'} held the outputs of {captures / 'day2/x.h5'}; "
+                             f"now those of {other / 'day2/x.h5'}\n")
+
 
 def test_a_capture_that_now_fails_loses_its_stale_outputs(tmp_path, captures):
     out = tmp_path / "out"

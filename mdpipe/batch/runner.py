@@ -164,6 +164,10 @@ def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify
     with locked(out_dir, notify):
         tables.remove_partials(out_dir)
         records = manifest.load(out_dir)
+        for job in jobs:
+            before = records.get(job.key, {}).get("input")
+            if notify is not None and before not in (None, str(Path(job.capture).resolve())):
+                notify(f"Warning: {job.folder} held the outputs of {before}; now those of {job.capture}")
         if track:
             jobs = [replace(job, track=True, previous=records.get(job.key)) for job in jobs]
         outcomes, saved_at = [], time.monotonic()
