@@ -286,7 +286,7 @@ def _run(jobs, *, on_outcome, debug, progress=None, **kwargs):
 @main.command()
 @click.argument("captures", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
-              help="Folder for the outputs, one folder per capture named like it [default: . ; with --json "
+              help="Folder for the outputs, one folder OUT/<stem>/ per capture [default: . ; with --json "
                    "nothing is written unless --out is given].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object per target on stdout.")
 @analysis_options
@@ -294,7 +294,8 @@ def process(captures, out_dir, as_json, no_figures, debug, **options):
     """Detect targets in each CAPTURE (a file, or a folder searched for *.h5 and *.hdf5), measure their
     micro-Doppler features, call drone / bird / none.
 
-    Writes OUT/<capture name>/ holding <stem>.features.csv, <stem>.run.json and the figures <stem>_range.png,
+    Writes OUT/<stem>/ (for a folder, OUT/<path relative to it, less .h5>/) holding <stem>.features.csv,
+    <stem>.run.json and the figures <stem>_range.png,
     _spectrogram.png, _spectrum.png, published together. A capture that cannot be processed is reported on
     one line and its folder holds only <stem>.error.txt; the others go on; the exit code is then 2.
     """
@@ -389,8 +390,8 @@ def _import_summary_modules():
 @main.command()
 @click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False, path_type=Path),
-              help="Output folder: OUT/<input path>/ per capture, OUT/features.csv, OUT/summary.png, "
-                   "OUT/manifest.json.")
+              help="Output folder: OUT/<path relative to the folder given, less .h5>/ per capture, "
+                   "OUT/features.csv, OUT/summary.png, OUT/manifest.json.")
 @click.option("-j", "--jobs", "workers", type=click.IntRange(min=1), default=os.cpu_count() or 1,
               show_default="the number of CPUs", help="Captures processed at once (worker processes).")
 @click.option("--scheduler", metavar="local|tcp://HOST:8786",

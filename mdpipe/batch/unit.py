@@ -149,9 +149,10 @@ def run(job):
     if job.out_dir is not None:
         try:
             names = tables.publish(job.folder, lambda tmp: _write_outputs(result, job, Path(tmp)))
-        except Exception as exc:
-            return failure(job, one_line(job.capture, exc, writing=True), _trace(exc), identity=identity,
-                           started=started)
+        except Exception as exc:  # a full disk (OSError), or a figure that cannot be drawn (a bug: keep the trace)
+            writing = isinstance(exc, OSError)
+            return failure(job, one_line(job.capture, exc, writing=writing), _trace(exc), keep_trace=not writing,
+                           identity=identity, started=started)
         if identity is not None:
             outcome.record = {**identity, "status": "ok", "outputs": names}
     outcome.seconds = time.perf_counter() - started
