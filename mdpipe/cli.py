@@ -418,17 +418,21 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
     def tally(outcome):
         counts["failed" if outcome.failed else outcome.status] += 1
 
+    def summary(outcomes):
+        if progress is not None:
+            progress.clear()
+        kept = sum(o.failed and o.status == "up to date" for o in outcomes)
+        click.echo(f"{len(jobs)} captures: {counts['done']} processed, {counts['up to date']} up to date, "
+                   f"{counts['failed']} failed" + (f" ({kept} of them unchanged since they failed)" if kept else ""))
+        _gather(out_dir, figures=not no_figures)
+
     try:
-        outcomes = _run(jobs, on_outcome=tally, debug=debug, progress=progress, workers=workers,
-                        scheduler=scheduler, track=True)
+        _run(jobs, on_outcome=tally, debug=debug, progress=progress, workers=workers, scheduler=scheduler,
+             track=True, finish=summary)
     except (KeyboardInterrupt, Terminated):
         click.echo(f"Interrupted after {sum(counts.values())} of {len(jobs)} captures; each capture is published "
                    "whole or not at all: run the same command again to finish.", err=True)
         raise
-    kept = sum(o.failed and o.status == "up to date" for o in outcomes)
-    click.echo(f"{len(jobs)} captures: {counts['done']} processed, {counts['up to date']} up to date, "
-               f"{counts['failed']} failed" + (f" ({kept} of them unchanged since they failed)" if kept else ""))
-    _gather(out_dir, figures=not no_figures)
     if counts["failed"]:
         raise click.exceptions.Exit(EXIT_FAILED)
 

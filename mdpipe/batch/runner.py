@@ -25,6 +25,7 @@ from mdpipe.errors import MdpipeError
 from mdpipe.report import tables
 
 LOCK_NAME = ".mdpipe.lock"
+OUT_FILES = (manifest.MANIFEST_NAME, tables.SUMMARY_TABLE, "summary.png")  # written into OUT itself
 MANIFEST_INTERVAL_S = 1.0  # the manifest is rewritten at most this often during a run, and at its end
 PRELOAD = ["mdpipe.batch.unit"]
 PRELOAD_FIGURES = ["mdpipe.report.plots"]
@@ -151,18 +152,20 @@ def _save(out_dir, records, notify):
                    "redo the captures it does not list")
 
 
-def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify=None):
+def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify=None, finish=None):
     """Run ``jobs`` (all with one ``out_dir``, or None) under OUT's lock; returns their outcomes.
 
     With ``track`` the manifest decides what is redone and is updated as captures finish; without, the
     manifest forgets the captures published (they were made with other settings). Temporary folders left by an
-    earlier interrupted or killed run are removed first. ``notify(text)`` hears of waits and warnings.
+    earlier interrupted or killed run are removed first. ``notify(text)`` hears of waits and warnings;
+    ``finish(outcomes)`` runs at the end, still under the lock (the folder's summary).
     """
     out_dir = jobs[0].out_dir if jobs else None
     if out_dir is None:
         return [_report(outcome, on_outcome) for outcome in execute(jobs, workers=workers, scheduler=scheduler)]
+    leftovers = [job.folder for job in jobs] + [Path(out_dir) / name for name in OUT_FILES]
     with locked(out_dir, notify):
-        tables.remove_partials(out_dir)
+        tables.remove_partials(leftovers)
         records = manifest.load(out_dir)
         for job in jobs:
             before = records.get(job.key, {}).get("input")
@@ -182,11 +185,13 @@ def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify
                         _save(out_dir, records, notify)
                         saved_at = time.monotonic()
                     outcomes.append(_report(outcome, on_outcome))
+            if finish is not None:
+                finish(outcomes)
         finally:
             if track or (Path(out_dir) / manifest.MANIFEST_NAME).exists():
                 _save(out_dir, records, notify)
             if scheduler is None:
-                tables.remove_partials(out_dir)
+                tables.remove_partials(leftovers)
     return outcomes
 
 

@@ -137,16 +137,22 @@ def unpublish(folder):
         shutil.rmtree(trash, ignore_errors=True)
 
 
-def remove_partials(folder):
-    """Delete the temporary folders and files that an interrupted or killed run left under ``folder``."""
-    for root, dirs, files in os.walk(folder):
-        for name in [d for d in dirs if d.startswith(PARTIAL_PREFIX)]:
-            shutil.rmtree(os.path.join(root, name), ignore_errors=True)
-            dirs.remove(name)
-        for name in files:
-            if name.startswith(PARTIAL_PREFIX):
-                with contextlib.suppress(FileNotFoundError):
-                    os.remove(os.path.join(root, name))
+def remove_partials(paths):
+    """Delete what interrupted or killed runs left beside ``paths`` (output folders and files): the temporary
+    names :func:`publish` and :func:`atomic_write` give them. Only the folders holding ``paths`` are looked in."""
+    for path in map(Path, paths):
+        prefix = f"{PARTIAL_PREFIX}{path.name}."
+        try:
+            entries = list(os.scandir(path.parent))
+        except (FileNotFoundError, NotADirectoryError):
+            continue
+        for entry in entries:
+            if entry.name.startswith(prefix):
+                if entry.is_dir(follow_symlinks=False):
+                    shutil.rmtree(entry.path, ignore_errors=True)
+                else:
+                    with contextlib.suppress(FileNotFoundError):
+                        os.remove(entry.path)
 
 
 SIGNIFICANT_DIGITS = 15  # every double holds 15: 1 / 40e-6 = 24999.999999999996 is written 25000.0
