@@ -250,18 +250,20 @@ def test_dask_missing_is_one_line(tmp_path, monkeypatch):
                              "pip install 'mdpipe[dask]'\n")
 
 
-def test_dask_local_cluster_gives_the_pool_tables(tmp_path):
+def test_dask_local_cluster_gives_the_pool_tables(tmp_path, monkeypatch):
     pytest.importorskip("distributed", reason="Dask is an optional extra: pip install 'mdpipe[dask]'")
-    folder = tmp_path / "in"
+    monkeypatch.chdir(tmp_path)  # relative paths: the Dask workers run in another folder
+    folder = Path("in")
     folder.mkdir()
     for name in ("phantom4_xband.h5", "gull_flyby.h5", "clutter_only.h5"):
         shutil.copy(SAMPLES / name, folder / name)
-    pool, cluster = tmp_path / "pool", tmp_path / "dask"
+    pool, cluster = Path("pool"), Path("dask")
     assert batch(folder, "--out", pool, "-j", 2, "--no-figures").exit_code == 0
     result = batch(folder, "--out", cluster, "-j", 2, "--no-figures", "--scheduler", "local")
     assert result.exit_code == 0, result.output
     assert "3 captures: 3 processed" in result.output
     assert (cluster / "features.csv").read_bytes() == (pool / "features.csv").read_bytes()
+    assert "\nin/gull_flyby.h5," in (cluster / "features.csv").read_text()  # the path as given
     for name in ("phantom4_xband", "gull_flyby", "clutter_only"):
         table = f"{name}/{name}.features.csv"
         assert (cluster / table).read_bytes() == (pool / table).read_bytes()

@@ -6,7 +6,9 @@ write OUT through a filesystem they share with this machine (the paths given mus
 """
 
 import logging
+import os
 import secrets
+from dataclasses import replace
 
 from mdpipe.batch import unit
 from mdpipe.errors import MdpipeError
@@ -39,6 +41,10 @@ def execute(jobs, *, scheduler, workers):
     """Yield the :class:`mdpipe.batch.unit.Outcome` of every job as it finishes on the cluster."""
     client, cluster = _client(scheduler, workers)
     from distributed import as_completed
+
+    # the workers run elsewhere (another folder, another machine): absolute paths, valid on the shared mount
+    jobs = [replace(job, capture=os.path.abspath(job.capture), out_dir=os.path.abspath(job.out_dir), given=job.capture)
+            for job in jobs]
 
     token = secrets.token_hex(4)
     futures, finished = {}, False

@@ -43,6 +43,9 @@ class Job:
         Fingerprint the input for the manifest and skip it when ``previous`` still describes it.
     previous : dict or None
         The manifest record of the last run.
+    given : str or None
+        The capture's path as the user gave it, for the tables, when ``capture`` had to be made absolute
+        (Dask workers run in other folders); None: ``capture``.
     """
 
     capture: str
@@ -53,6 +56,7 @@ class Job:
     figures: bool = True
     track: bool = False
     previous: Optional[dict] = None
+    given: Optional[str] = None
 
     @property
     def folder(self):
@@ -142,9 +146,11 @@ def run(job):
                 return Outcome(job.capture, job.key, UP_TO_DATE, job.previous["status"] == FAILED,
                                job.previous.get("error", ""), record=job.previous)
         result = process_capture(job.capture, job.params, **job.reader)
+        for row in result.rows:
+            row["file"] = job.given or job.capture
     except Exception as exc:
-        return failure(job, one_line(job.capture, exc), _trace(exc), keep_trace=not isinstance(exc, MdpipeError),
-                       identity=identity, started=started)
+        return failure(job, one_line(job.capture, exc), _trace(exc),
+                       keep_trace=not isinstance(exc, (MdpipeError, OSError)), identity=identity, started=started)
     outcome = Outcome(job.capture, job.key, DONE, False, rows=result.rows)
     if job.out_dir is not None:
         try:
