@@ -15,7 +15,7 @@ from pathlib import Path
 import click
 
 from mdpipe import __version__
-from mdpipe.errors import MdpipeError, ParameterError
+from mdpipe.errors import MdpipeError
 from mdpipe.io import open_capture
 from mdpipe.io.radarlog import ATTRIBUTES
 from mdpipe.params import RANGE_WINDOWS, ProcessParams
@@ -429,10 +429,10 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
     try:
         _run(jobs, on_outcome=tally, debug=debug, progress=progress, workers=workers, scheduler=scheduler,
              track=True, finish=summary)
-    except (KeyboardInterrupt, Terminated):
+    except (KeyboardInterrupt, Terminated) as exc:
         click.echo(f"Interrupted after {sum(counts.values())} of {len(jobs)} captures; each capture is published "
                    "whole or not at all: run the same command again to finish.", err=True)
-        raise
+        raise click.exceptions.Exit(EXIT_TERMINATED if isinstance(exc, Terminated) else EXIT_INTERRUPTED) from None
     if counts["failed"]:
         raise click.exceptions.Exit(EXIT_FAILED)
 

@@ -2,7 +2,6 @@
 every capture folder is published whole or not at all, and the next run finishes the work."""
 
 import json
-import os
 import shutil
 import signal
 import subprocess
