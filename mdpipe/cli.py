@@ -381,12 +381,6 @@ def _gather(folder, *, figures):
     return len(errors)
 
 
-def _import_summary_modules():
-    import pandas  # noqa: F401
-
-    import mdpipe.report.plots  # noqa: F401
-
-
 @main.command()
 @click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False, path_type=Path),
@@ -410,8 +404,6 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
     if scheduler is not None and scheduler != "local" and "://" not in scheduler:
         raise UsageError(f"--scheduler {scheduler!r}: give 'local' or an address such as tcp://HOST:8786")
     jobs = _jobs(inputs, out_dir, options, figures=not no_figures)
-    if not no_figures:  # the summary figure's imports (2 s), here while the workers start
-        threading.Thread(target=_import_summary_modules, daemon=True).start()
     progress = Progress(len(jobs), sys.stderr) if sys.stderr.isatty() else None
     counts = {"done": 0, "failed": 0, "up to date": 0}
 
