@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale batch paper clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch batch paper clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -51,6 +51,10 @@ bench-sim: $(MDPIPE)
 # Full-size processing against a bare read, and a capture twice as long (~4 GB under BENCH_DIR, removed).
 bench-scale: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_scale.py --workdir $(BENCH_DIR)
+
+# mdpipe batch against one `mdpipe process` per capture two at a time, on the bundled samples (~1 min).
+bench-batch: $(MDPIPE)
+	$(BIN)/python benchmarks/bench_batch.py
 
 # The paper's Tables IV and V from simulations of every Table I and II configuration (~30 s).
 paper: $(MDPIPE)
