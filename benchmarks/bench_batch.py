@@ -38,7 +38,8 @@ def per_capture(captures, out, figures, src):
     extra = [] if figures else ["--no-figures"]
     with ThreadPoolExecutor(2) as pool:
         list(pool.map(lambda c: mdpipe(["process", c, "--out", out, *extra], src), captures))
-    mdpipe(["summarize", out, *(extra if src is None else ([] if figures else ["--no-figure"]))], src)
+    no_figure = "--no-figure" if src else "--no-figures"  # the option's name before `mdpipe batch`
+    mdpipe(["summarize", out, *([] if figures else [no_figure])], src)
 
 
 def batch(inputs, out, figures):
