@@ -2,6 +2,8 @@
 every capture folder is published whole or not at all, and the next run finishes the work."""
 
 import json
+import os
+import re
 import shutil
 import signal
 import subprocess
@@ -11,11 +13,12 @@ from pathlib import Path
 
 import pytest
 
+from mdpipe.batch import runner
 from mdpipe.report import tables
 
 SAMPLES = Path(__file__).resolve().parents[1] / "data_samples"
 MDPIPE = [sys.executable, "-c", "import sys; from mdpipe.cli import main; sys.argv[0] = 'mdpipe'; main()"]
-N_CAPTURES = 16
+N_CAPTURES = 24
 
 
 @pytest.fixture
@@ -112,14 +115,25 @@ def test_killed_batch_is_finished_by_the_next_run(folder, tmp_path):
     assert len(json.loads((out / "manifest.json").read_text())["captures"]) == N_CAPTURES
 
 
+def test_a_second_run_waits_for_the_first(folder, tmp_path):
+    out = tmp_path / "out"
+    with runner.locked(out):  # a first run holds OUT
+        second = start(folder, out)
+        line = second.stderr.readline()
+        assert line == f"{out} is in use by another mdpipe run (pid {os.getpid()}); waiting for it to finish\n"
+        time.sleep(0.5)
+        assert second.poll() is None and not list(out.rglob(tables.MARKER))  # it waits, writing nothing
+    stdout, stderr = second.communicate(timeout=120)
+    assert second.returncode == 0, stderr
+    assert f"{N_CAPTURES} captures: {N_CAPTURES} processed, 0 up to date, 0 failed" in stdout
+
+
 def test_two_runs_on_one_out_at_once(folder, tmp_path):
     out = tmp_path / "out"
-    first = start(folder, out)
-    wait_for_first(out, first)
-    second = start(folder, out)
-    (out1, err1), (out2, err2) = first.communicate(timeout=120), second.communicate(timeout=120)
-    assert first.returncode == 0 and second.returncode == 0, (err1, err2)
-    assert f"{N_CAPTURES} captures: {N_CAPTURES} processed, 0 up to date, 0 failed" in out1
-    assert f"is in use by another mdpipe run (pid {first.pid}); waiting for it to finish" in err2
-    assert f"{N_CAPTURES} captures: 0 processed, {N_CAPTURES} up to date, 0 failed" in out2
+    runs = [start(folder, out), start(folder, out)]
+    results = [run.communicate(timeout=120) for run in runs]
+    assert [run.returncode for run in runs] == [0, 0], results
+    processed = [int(re.search(r"captures: (\d+) processed", stdout).group(1)) for stdout, _ in results]
+    assert sum(processed) == N_CAPTURES  # one after the other: each capture processed once
     assert len(assert_nothing_half_published(out)) == N_CAPTURES
+    assert len(json.loads((out / "manifest.json").read_text())["captures"]) == N_CAPTURES
