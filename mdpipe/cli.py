@@ -274,8 +274,15 @@ def _run(jobs, *, on_outcome, debug, progress=None, **kwargs):
         if progress is not None:
             progress.update(outcome)
 
+    def notify(text):
+        if progress is not None:
+            progress.clear()
+        click.echo(text, err=True)
+        if progress is not None:
+            progress.draw()
+
     try:
-        return runner.run(jobs, on_outcome=report, notify=lambda text: click.echo(text, err=True), **kwargs)
+        return runner.run(jobs, on_outcome=report, notify=notify, **kwargs)
     except MdpipeError as exc:
         raise UsageError(str(exc)) from None
     finally:
@@ -349,8 +356,10 @@ class Progress:
 
     def draw(self):
         filled = self.WIDTH * self.done // max(self.total, 1)
-        elapsed = time.monotonic() - self.started
-        eta = "?" if not self.done else time.strftime("%H:%M:%S", time.gmtime(elapsed / self.done * (self.total - self.done)))
+        eta = "?"
+        if self.done:
+            remaining_s = (time.monotonic() - self.started) / self.done * (self.total - self.done)
+            eta = time.strftime("%H:%M:%S", time.gmtime(remaining_s))
         self.stream.write(f"\r[{'#' * filled}{'.' * (self.WIDTH - filled)}] {self.done}/{self.total}, "
                           f"{self.failed} failed, ETA {eta} ")
         self.stream.flush()

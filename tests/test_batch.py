@@ -43,6 +43,7 @@ def test_batch_mirrors_folders_and_keeps_same_stems_apart(tmp_path, captures):
     result = batch(captures, "--out", out, "-j", 2)
     assert result.exit_code == 0, result.output
     assert "3 captures: 3 processed, 0 up to date, 0 failed" in result.output
+    assert result.stderr == ""  # not a terminal: no progress bar
     figures = ["_range.png", "_spectrogram.png", "_spectrum.png"]
     assert published(out) == {
         "day1/x": sorted([tables.MARKER, "x.features.csv", "x.run.json"] + [f"x{f}" for f in figures]),
@@ -59,6 +60,24 @@ def test_batch_mirrors_folders_and_keeps_same_stems_apart(tmp_path, captures):
     for path in [out / "features.csv", out / "manifest.json", out / "day2/x/x_spectrum.png"]:
         assert path.stat().st_mode & 0o777 == 0o666 & ~umask, path
     assert (out / "day2/x").stat().st_mode & 0o777 == 0o777 & ~umask
+
+
+def test_progress_line_on_a_terminal(monkeypatch):
+    import io
+
+    from mdpipe import cli
+
+    clock = iter([100.0, 110.0, 130.0])  # started at 100 s; 1 of 4 done at 110 s; 2 at 130 s
+    monkeypatch.setattr(cli.time, "monotonic", lambda: next(clock))
+    stream = io.StringIO()
+    progress = cli.Progress(4, stream)
+    progress.update(unit.Outcome("a.h5", "a", unit.DONE, False))
+    progress.update(unit.Outcome("b.h5", "b", unit.FAILED, True))
+    frames = stream.getvalue().split("\r")[1:]
+    # ETA = elapsed / done x remaining: 10 s x 3 = 30 s, then 15 s x 2 = 30 s
+    assert frames == ["[........................] 0/4, 0 failed, ETA ? ",
+                      "[######..................] 1/4, 0 failed, ETA 00:00:30 ",
+                      "[############............] 2/4, 1 failed, ETA 00:00:30 "]
 
 
 def test_summary_table_keeps_types(tmp_path):
