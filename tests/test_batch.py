@@ -286,3 +286,15 @@ def test_dask_local_cluster_gives_the_pool_tables(tmp_path, monkeypatch):
     for name in ("phantom4_xband", "gull_flyby", "clutter_only"):
         table = f"{name}/{name}.features.csv"
         assert (cluster / table).read_bytes() == (pool / table).read_bytes()
+
+
+def test_leftovers_of_a_killed_run_are_removed_and_nothing_else(tmp_path):
+    out = tmp_path / "out"
+    keep = [out / ".mdpipe-partial-other.abc123", out / "x" / "x.features.csv", out / "notes.txt"]
+    gone = [out / ".mdpipe-partial-x.k2j3_q", out / ".mdpipe-partial-x.old.1a2b3c4d",
+            out / ".mdpipe-partial-features.csv.zz9"]
+    for path in keep + gone:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text("")
+    tables.remove_partials([out / "x", out / "features.csv"])
+    assert [p.exists() for p in keep] == [True, True, True] and [p.exists() for p in gone] == [False, False, False]

@@ -26,7 +26,7 @@ from mdpipe.report import tables
 
 LOCK_NAME = ".mdpipe.lock"
 OUT_FILES = (manifest.MANIFEST_NAME, tables.SUMMARY_TABLE, "summary.png")  # written into OUT itself
-MANIFEST_INTERVAL_S = 1.0  # the manifest is rewritten at most this often during a run, and at its end
+MANIFEST_INTERVAL_S = 1.0  # the manifest is rewritten at most this often during a run (and at its end)
 PRELOAD = ["mdpipe.batch.unit"]
 PRELOAD_FIGURES = ["mdpipe.report.plots"]
 
@@ -173,7 +173,7 @@ def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify
                 notify(f"Warning: {job.folder} held the outputs of {before}; now those of {job.capture}")
         if track:
             jobs = [replace(job, track=True, previous=records.get(job.key)) for job in jobs]
-        outcomes, saved_at = [], time.monotonic()
+        outcomes, saved_at, interval_s = [], time.monotonic(), MANIFEST_INTERVAL_S
         try:
             with contextlib.closing(execute(jobs, workers=workers, scheduler=scheduler)) as stream:
                 for outcome in stream:
@@ -181,9 +181,11 @@ def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify
                         records[outcome.key] = outcome.record
                     else:
                         records.pop(outcome.key, None)
-                    if track and time.monotonic() - saved_at > MANIFEST_INTERVAL_S:
+                    if track and time.monotonic() - saved_at > interval_s:
+                        began = time.monotonic()
                         _save(out_dir, records, notify)
                         saved_at = time.monotonic()
+                        interval_s = max(MANIFEST_INTERVAL_S, 10 * (saved_at - began))  # <= 10 % of the run
                     outcomes.append(_report(outcome, on_outcome))
             if finish is not None:
                 finish(outcomes)

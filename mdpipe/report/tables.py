@@ -139,20 +139,28 @@ def unpublish(folder):
 
 def remove_partials(paths):
     """Delete what interrupted or killed runs left beside ``paths`` (output folders and files): the temporary
-    names :func:`publish` and :func:`atomic_write` give them. Only the folders holding ``paths`` are looked in."""
+    names :func:`publish` and :func:`atomic_write` give them. Each folder holding ``paths`` is listed once."""
+    wanted = {}
     for path in map(Path, paths):
-        prefix = f"{PARTIAL_PREFIX}{path.name}."
+        wanted.setdefault(path.parent, set()).add(path.name)
+    for parent, names in wanted.items():
         try:
-            entries = list(os.scandir(path.parent))
+            entries = list(os.scandir(parent))
         except (FileNotFoundError, NotADirectoryError):
             continue
         for entry in entries:
-            if entry.name.startswith(prefix):
-                if entry.is_dir(follow_symlinks=False):
-                    shutil.rmtree(entry.path, ignore_errors=True)
-                else:
-                    with contextlib.suppress(FileNotFoundError):
-                        os.remove(entry.path)
+            if not entry.name.startswith(PARTIAL_PREFIX):
+                continue
+            owner = entry.name[len(PARTIAL_PREFIX):].rsplit(".", 1)[0]  # less the random suffix (no dots)
+            if owner not in names and owner.endswith(".old"):  # a replaced folder set aside
+                owner = owner[:-len(".old")]
+            if owner not in names:
+                continue
+            if entry.is_dir(follow_symlinks=False):
+                shutil.rmtree(entry.path, ignore_errors=True)
+            else:
+                with contextlib.suppress(FileNotFoundError):
+                    os.remove(entry.path)
 
 
 SIGNIFICANT_DIGITS = 15  # every double holds 15: 1 / 40e-6 = 24999.999999999996 is written 25000.0
