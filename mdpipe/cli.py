@@ -405,7 +405,7 @@ def _gather(folder, *, figures):
 def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
     """Process every capture in INPUT (files, or folders searched recursively for *.h5 and *.hdf5) into OUT.
 
-    Each capture's outputs go to OUT/<its path relative to the folder given>/, published together; a capture
+    Each capture's outputs go to OUT/<its path relative to the folder given, less .h5>/, published whole; a capture
     is redone only when its size, mtime or content (SHA-256), mdpipe's version or the options changed
     (OUT/manifest.json). Ends with OUT/features.csv and OUT/summary.png. Exit code 0 all good, 2 some
     captures failed, 130 interrupted (what finished is kept; run again to finish).
