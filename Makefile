@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale batch paper evaluate readme clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch batch paper evaluate readme clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -57,6 +57,10 @@ bench-sim: $(MDPIPE)
 bench-scale: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_scale.py --workdir $(BENCH_DIR)
 
+# mdpipe batch against one `mdpipe process` per capture two at a time, on the bundled samples (~1 min).
+bench-batch: $(MDPIPE)
+	$(BIN)/python benchmarks/bench_batch.py
+
 # The paper's Tables IV and V from simulations of every Table I and II configuration (~30 s).
 paper: $(MDPIPE)
 	$(MDPIPE) paper --out reports
@@ -66,20 +70,16 @@ paper: $(MDPIPE)
 evaluate: $(MDPIPE)
 	$(MDPIPE) evaluate configs/sweeps/default.yaml --out out/evaluate -j 2
 
-# Every capture under IN, processed in parallel (make -j4 batch IN=captures OUT=results). A capture is
-# processed again only when it is newer than its table; one that fails leaves OUT/<stem>.error.txt and
-# the others go on; `mdpipe summarize` then gathers OUT/features.csv and lists the failures.
+# Every capture under IN (a folder, searched recursively), processed by JOBS worker processes into OUT
+# (make batch IN=captures OUT=results JOBS=4 ARGS="--blades 3"). Only captures whose input, options or
+# mdpipe version changed are redone (OUT/manifest.json); see `mdpipe batch --help`.
 IN ?= data_samples
 OUT ?= out/batch
-CAPTURES := $(shell find $(IN) -name '*.h5' 2>/dev/null)
-TABLES := $(patsubst $(IN)/%.h5,$(OUT)/%.features.csv,$(CAPTURES))
+JOBS ?= 2
+ARGS ?=
 
-batch: $(TABLES)
-	$(MDPIPE) summarize $(OUT)
-
-$(OUT)/%.features.csv: $(IN)/%.h5 | $(MDPIPE)
-	@mkdir -p $(@D)
-	-$(MDPIPE) process $< --out $(@D) > /dev/null
+batch: $(MDPIPE)
+	$(MDPIPE) batch "$(IN)" --out "$(OUT)" -j $(JOBS) $(ARGS)
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache

@@ -1,9 +1,16 @@
-"""The ``mdpipe`` command line: thin click commands that parse, call the library and write."""
+"""The ``mdpipe`` command line: thin click commands that parse, call the library and write.
+
+Exit codes, the same in every command: 0 all good, 1 a usage error (a bad option, input or output folder),
+2 a capture (or config) failed, 130 interrupted (Ctrl-C; 143 for SIGTERM).
+"""
 
 import contextlib
 import json
+import os
 import signal
 import sys
+import threading
+import time
 from pathlib import Path
 
 import click
@@ -15,12 +22,27 @@ from mdpipe.io.radarlog import ATTRIBUTES
 from mdpipe.params import RANGE_WINDOWS, FigureParams, ProcessParams
 
 PROGRESS_MIN_SAMPLES = 1 << 25
+EXIT_USAGE, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_TERMINATED = 1, 2, 130, 128 + signal.SIGTERM
 
 
 class InputError(click.ClickException):
     """Bad input named in one line; exit code 2."""
 
-    exit_code = 2
+    exit_code = EXIT_FAILED
+
+
+class UsageError(click.ClickException):
+    """A bad option value, input or output folder, named in one line; exit code 1."""
+
+    exit_code = EXIT_USAGE
+
+
+class Terminated(BaseException):
+    """SIGTERM, raised where the program is so that its clean-ups run as for Ctrl-C."""
+
+
+def _terminated(signum, frame):
+    raise Terminated()
 
 
 class BladeCount(click.ParamType):
@@ -41,13 +63,41 @@ class BladeCount(click.ParamType):
 
 
 class Group(click.Group):
-    """Turns :class:`MdpipeError` into a one-line message and exit code 2, with no traceback."""
+    """One exit-code convention: usage errors 1, :class:`MdpipeError` 2 (one line, no traceback), Ctrl-C 130,
+    SIGTERM 143."""
+
+    def make_context(self, *args, **kwargs):
+        try:
+            return super().make_context(*args, **kwargs)
+        except click.UsageError as exc:
+            exc.exit_code = EXIT_USAGE
+            raise
 
     def invoke(self, ctx):
+        main_thread = threading.current_thread() is threading.main_thread()
+        previous = signal.signal(signal.SIGTERM, _terminated) if main_thread else None
         try:
             return super().invoke(ctx)
+        except click.UsageError as exc:
+            exc.exit_code = EXIT_USAGE
+            raise
         except MdpipeError as exc:
             raise InputError(str(exc)) from None
+        except (click.ClickException, click.exceptions.Exit, click.exceptions.Abort):
+            raise
+        except OSError as exc:  # outside any one capture's work: writing a summary, a folder that vanished
+            raise InputError(" ".join(str(exc).split())) from None
+        except Exception as exc:  # an input nobody foresaw, or a bug: one line all the same
+            raise InputError(f"internal error, {type(exc).__name__}: {' '.join(str(exc).split())}") from None
+        except KeyboardInterrupt:
+            click.echo("Interrupted.", err=True)
+            raise click.exceptions.Exit(EXIT_INTERRUPTED) from None
+        except Terminated:
+            click.echo("Terminated.", err=True)
+            raise click.exceptions.Exit(EXIT_TERMINATED) from None
+        finally:
+            if main_thread:
+                signal.signal(signal.SIGTERM, previous)
 
 
 @contextlib.contextmanager
@@ -223,123 +273,264 @@ def info(capture, as_json, **options):
                 click.echo(line)
 
 
-@main.command()
-@click.argument("captures", nargs=-1, required=True, type=click.Path(dir_okay=False, path_type=Path))
-@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path), default=Path("."),
-              show_default=True, help="Folder for tables and figures.")
-@click.option("--json", "as_json", is_flag=True, help="Print one JSON object per target on stdout.")
-@click.option("--no-figures", is_flag=True, help="Write the tables only.")
-@click.option("--range-m", type=click.FloatRange(min=0, min_open=True), help="Analyse this range instead of detecting.")
-@click.option("--min-range-m", type=float, default=ProcessParams.min_range_m, show_default=True)
-@click.option("--max-range-m", type=float, default=ProcessParams.max_range_m, show_default=True)
-@click.option("--max-targets", type=click.IntRange(min=1), default=ProcessParams.max_targets, show_default=True)
-@click.option("--elevation-deg", type=click.FloatRange(-90, 90), default=None,
-              help="Elevation beta of the rotor plane (Eq. 6) [not given: 0 assumed, and blade_length_m_status says so].")
-@click.option("--blades", "n_blades", type=BladeCount(), default="auto", show_default=True,
-              help="Blades per rotor (N), or auto: measured where the echo tells it, else assumed and said so.")
-@click.option("--threshold-db", type=float, default=ProcessParams.threshold_db, show_default=True,
-              help="The paper's bandwidth rule: spectrum above its mean by this much.")
-@click.option("--range-window", type=click.Choice(RANGE_WINDOWS), default=ProcessParams.range_window, show_default=True)
-@click.option("--zero-pad", type=click.IntRange(1, 16), default=ProcessParams.zero_pad, show_default=True)
-@click.option("--stft-window-s", type=click.FloatRange(min=0, min_open=True), help="Spectrogram window [from physics].")
-@click.option("--stft-hop-s", type=click.FloatRange(min=0, min_open=True), help="Spectrogram hop [window / 4].")
-@click.option("--max-memory-gb", type=click.FloatRange(min=0, min_open=True), default=ProcessParams.max_memory_gb,
-              show_default=True, help="Refuse a capture whose planned memory exceeds this (GiB).")
-@click.option("--doppler-limits", default="auto", show_default=True,
-              help="Doppler axis of the figures: auto (the occupied band), full (+-PRF/2) or LOW,HIGH in Hz.")
-@attribute_overrides
-def process(captures, out_dir, as_json, no_figures, doppler_limits, **options):
-    """Detect targets in each CAPTURE, measure their micro-Doppler features, call drone / bird / none.
+def analysis_options(func):
+    """The options of ``process`` and ``batch``, declared once: what to analyse, how, and what to write."""
+    options = [
+        click.option("--no-figures", is_flag=True, help="Write the tables only, no PNG figures."),
+        click.option("--debug", is_flag=True, help="Print the traceback of every failed capture on stderr."),
+        click.option("--range-m", type=click.FloatRange(min=0, min_open=True),
+                     help="Analyse the target at this range (m) instead of detecting targets."),
+        click.option("--min-range-m", type=click.FloatRange(min=0), default=ProcessParams.min_range_m,
+                     show_default=True, help="Near edge of the range gate searched for targets (m)."),
+        click.option("--max-range-m", type=click.FloatRange(min=0, min_open=True), default=ProcessParams.max_range_m,
+                     show_default=True, help="Far edge of the range gate searched for targets (m)."),
+        click.option("--max-targets", type=click.IntRange(min=1), default=ProcessParams.max_targets,
+                     show_default=True, help="Most targets reported per capture, strongest first."),
+        click.option("--false-alarm-probability", type=click.FloatRange(0, 1, min_open=True, max_open=True),
+                     default=ProcessParams.false_alarm_probability, show_default=True,
+                     help="Probability that receiver noise alone gives a detection in a capture (range-Doppler CFAR)."),
+        click.option("--elevation-deg", type=click.FloatRange(-90, 90), default=None,
+                     help="Elevation beta of the rotor plane (Eq. 6), for the blade length [not given: 0 assumed, "
+                          "and blade_length_m_status says so]."),
+        click.option("--blades", "n_blades", type=BladeCount(), default="auto", show_default=True,
+                     help="Blades per rotor (N), or auto: measured where the echo tells it (blade imbalance, odd-N "
+                          "flash doubling), else assumed and said so in n_blades_source."),
+        click.option("--threshold-db", type=float, default=ProcessParams.threshold_db, show_default=True,
+                     help="The paper's bandwidth rule: the spectrum above its mean by this much (dB)."),
+        click.option("--range-window", type=click.Choice(RANGE_WINDOWS), default=ProcessParams.range_window,
+                     show_default=True, help="Window of the range FFT."),
+        click.option("--zero-pad", type=click.IntRange(1, 16), default=ProcessParams.zero_pad, show_default=True,
+                     help="Zero-padding factor of the range FFT (range bins this many times finer; more memory)."),
+        click.option("--stft-window-s", type=click.FloatRange(min=0, min_open=True),
+                     help="Window of the spectrogram figure (s), rounded to whole chirps; a window outside 8 chirps "
+                          "to half the dwell is adjusted and the notes say so [from the target's physics]."),
+        click.option("--stft-hop-s", type=click.FloatRange(min=0, min_open=True),
+                     help="Hop of the spectrogram figure (s), rounded to whole chirps [window / 4]."),
+        click.option("--doppler-limits", default="auto", show_default=True,
+                     help="Doppler axis of the figures: auto (the occupied band), full (+-PRF/2) or LOW,HIGH in Hz."),
+        click.option("--max-memory-gb", type=click.FloatRange(min=0, min_open=True),
+                     default=ProcessParams.max_memory_gb, show_default=True,
+                     help="Refuse a capture whose planned memory exceeds this (GiB)."),
+    ]
+    func = attribute_overrides(func)
+    for option in reversed(options):
+        func = option(func)
+    return func
 
-    Writes <stem>.features.csv, <stem>.run.json and <stem>_range.png, _spectrogram.png, _spectrum.png
-    into --out. A capture that cannot be processed is reported on one line and in <stem>.error.txt;
-    the others go on; the exit code is 2 if any failed.
+
+def _jobs(inputs, out_dir, options, *, figures):
+    """One :class:`mdpipe.batch.unit.Job` per capture named by ``inputs`` (files or folders)."""
+    from mdpipe.batch.inputs import find_captures
+    from mdpipe.batch.unit import Job
+
+    try:
+        params = ProcessParams(**{k: v for k, v in options.items() if k in ProcessParams.__dataclass_fields__})
+        figure_params = FigureParams.from_text(options["doppler_limits"]) if figures else None
+        captures = find_captures(inputs)
+    except MdpipeError as exc:
+        raise UsageError(str(exc)) from None
+    reader = reader_options(options)
+    return [Job(str(c.path), c.key, None if out_dir is None else str(out_dir), params, reader, figure_params)
+            for c in captures]
+
+
+def _run(jobs, *, on_outcome, debug, progress=None, **kwargs):
+    """Run ``jobs`` with :func:`mdpipe.batch.runner.run`, failures one line each on stderr (and their
+    tracebacks with ``debug``); usage problems of OUT or the scheduler become exit code 1."""
+    from mdpipe.batch import runner
+
+    def report(outcome):
+        if progress is not None:
+            progress.clear()
+        if outcome.failed and outcome.status != "up to date":
+            click.echo(f"Error: {outcome.message}", err=True)
+            if debug and outcome.traceback:
+                click.echo(outcome.traceback.rstrip("\n"), err=True)
+        on_outcome(outcome)
+        if progress is not None:
+            progress.update(outcome)
+
+    def notify(text):
+        if progress is not None:
+            progress.clear()
+        click.echo(text, err=True)
+        if progress is not None:
+            progress.draw()
+
+    try:
+        return runner.run(jobs, on_outcome=report, notify=notify, **kwargs)
+    except MdpipeError as exc:
+        raise UsageError(str(exc)) from None
+    finally:
+        if progress is not None:
+            progress.clear()
+
+
+@main.command()
+@click.argument("captures", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
+              help="Folder for the outputs, one folder OUT/<stem>/ per capture [default: . ; with --json "
+                   "nothing is written unless --out is given].")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object per target on stdout.")
+@analysis_options
+def process(captures, out_dir, as_json, no_figures, debug, **options):
+    """Detect targets in each CAPTURE (a file, or a folder searched for *.h5 and *.hdf5), measure their
+    micro-Doppler features, call drone / bird / none.
+
+    Writes OUT/<stem>/ (for a folder, OUT/<path relative to it, less .h5>/) holding <stem>.features.csv,
+    <stem>.run.json and the figures <stem>_range.png,
+    _spectrogram.png, _spectrum.png, published together. A capture that cannot be processed is reported on
+    one line and its folder holds only <stem>.error.txt; the others go on; the exit code is then 2.
     """
-    from mdpipe.process.pipeline import process_capture
+    if out_dir is None and not as_json:
+        out_dir = Path(".")
+    jobs = _jobs(captures, out_dir, options, figures=not no_figures)
+
+    def show(outcome):
+        for row in outcome.rows:
+            click.echo(json.dumps(tables.json_record(row)) if as_json else _summary_line(row))
+
     from mdpipe.report import tables
 
-    reader = reader_options(options)
-    params = ProcessParams(**{k: v for k, v in options.items() if k in ProcessParams.__dataclass_fields__})
-    figure_params = FigureParams.from_text(doppler_limits)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    failed = 0
-    for capture in captures:
-        stem = out_dir / capture.stem
-        try:
-            result = process_capture(capture, params, **reader)
-            tables.write_features_csv(result.rows, stem.with_name(stem.name + tables.FEATURES_SUFFIX))
-            tables.write_run_json(stem.with_name(stem.name + ".run.json"), capture=capture, params=params,
-                                  layout=result.layout, radar=result.params)
-            if not no_figures:
-                from mdpipe.report import plots
-
-                plots.range_figure(result, stem.with_name(stem.name + "_range.png"))
-                if result.analyses:
-                    plots.spectrogram_figure(result, stem.with_name(stem.name + "_spectrogram.png"), figure_params)
-                    plots.spectrum_figure(result, stem.with_name(stem.name + "_spectrum.png"), figure_params)
-            error_file = stem.with_name(stem.name + tables.ERROR_SUFFIX)
-            if error_file.exists():
-                error_file.unlink()
-        except (MdpipeError, OSError) as exc:
-            failed += 1
-            message = str(exc) if str(capture) in str(exc) else f"{capture}: {exc}"
-            click.echo(f"Error: {message}", err=True)
-            tables.write_error(stem.with_name(stem.name + tables.ERROR_SUFFIX), capture, message)
-            continue
-        for row in result.rows:
-            if as_json:
-                click.echo(json.dumps(tables.json_record(row)))
-            else:
-                click.echo(_summary_line(row), err=as_json)
-    if failed:
-        raise click.exceptions.Exit(2)
+    outcomes = _run(jobs, on_outcome=show, debug=debug)
+    if any(o.failed for o in outcomes):
+        raise click.exceptions.Exit(EXIT_FAILED)
 
 
 def _summary_line(row):
     if row["range_m"] is None:
         return f"{row['file']}: none ({row['notes']})"
+    from mdpipe.report.tables import to_resolution
+
     parts = [f"{row['file']}: {row['class']} at {row['range_m']:.1f} m, SNR {row['snr_db']:.1f} dB"]
     for key, label, unit, scale in (("chopping_freq_hz", "chopping", "Hz", 1), ("rotation_rate_hz", "rotor", "rev/s", 1),
                                     ("blade_length_m", "blade", "cm", 100), ("doppler_bw_hz", "BW", "Hz", 1),
-                                    ("wingbeat_freq_hz", "wingbeat", "Hz", 1), ("body_velocity_mps", "v", "m/s", 1)):
+                                    ("wingbeat_freq_hz", "wingbeat", "Hz", 1)):
         if row.get(key) is not None:
             parts.append(f"{label} {row[key] * scale:.4g} {unit}")
+    if row.get("body_velocity_mps") is not None:  # to the Doppler resolution 1 / dwell, in m/s
+        resolution_mps = row["wavelength_m"] / (2 * row["dwell_s"])
+        parts.append(f"v {to_resolution(row['body_velocity_mps'], resolution_mps)} m/s")
     if row.get("aliased"):
         parts.append("aliased")
     return ", ".join(parts)
 
 
-@main.command()
-@click.argument("folder", type=click.Path(exists=True, file_okay=False, path_type=Path))
-@click.option("--no-figure", is_flag=True)
-def summarize(folder, no_figure):
-    """Gather every <stem>.features.csv under FOLDER into FOLDER/features.csv (and summary.png).
+class Progress:
+    """``[####....] done/total, failures, ETA`` on one line of a terminal."""
 
-    Captures that failed (their <stem>.error.txt) are listed, one line each; the exit code is then 1.
-    """
+    WIDTH = 24
+
+    def __init__(self, total, stream):
+        self.total, self.stream, self.done, self.failed, self.started = total, stream, 0, 0, time.monotonic()
+        self.draw()
+
+    def update(self, outcome):
+        self.done += 1
+        self.failed += outcome.failed
+        self.draw()
+
+    def draw(self):
+        filled = self.WIDTH * self.done // max(self.total, 1)
+        eta = "?"
+        if self.done:
+            remaining_s = (time.monotonic() - self.started) / self.done * (self.total - self.done)
+            eta = time.strftime("%H:%M:%S", time.gmtime(remaining_s))
+        self.stream.write(f"\r[{'#' * filled}{'.' * (self.WIDTH - filled)}] {self.done}/{self.total}, "
+                          f"{self.failed} failed, ETA {eta} ")
+        self.stream.flush()
+
+    def clear(self):
+        self.stream.write("\r\033[K")
+        self.stream.flush()
+
+
+def _gather(folder, *, figures):
+    """Write FOLDER/features.csv (and summary.png) from its captures' tables; print it; return the failures."""
+    from collections import Counter
+
     from mdpipe.report import tables
 
-    features, errors = tables.summarize(folder)
-    tables.atomic_write(folder / "features.csv", lambda tmp: features.to_csv(tmp, index=False))
-    if not no_figure and len(features):
+    columns, rows, errors = tables.gather(folder)
+    tables.write_table(folder / tables.SUMMARY_TABLE, columns or list(tables.JSON_KEYS), rows)
+    if figures and rows:
         from mdpipe.report import plots
 
-        plots.summary_figure(features, folder / "summary.png")
-    counts = features["class"].value_counts().to_dict() if len(features) else {}
-    click.echo(f"{folder / 'features.csv'}: {len(features)} target rows from "
-               f"{features['file'].nunique() if len(features) else 0} captures "
+        plots.summary_figure(tables.frame(columns, rows), folder / "summary.png")
+    counts = Counter(row["class"] for row in rows)
+    click.echo(f"{folder / tables.SUMMARY_TABLE}: {len(rows)} target rows from "
+               f"{len({row['file'] for row in rows})} captures "
                f"({', '.join(f'{k} {v}' for k, v in sorted(counts.items())) or 'none'}); {len(errors)} failed")
-    for _, error in errors.iterrows():
-        click.echo(f"failed: {error['error']}")
-    if len(errors):
-        raise click.exceptions.Exit(1)
+    for _, error in errors:
+        click.echo(f"failed: {error}")
+    return len(errors)
+
+
+@main.command()
+@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False, path_type=Path),
+              help="Output folder: OUT/<path relative to the folder given, less .h5>/ per capture, "
+                   "OUT/features.csv, OUT/summary.png, OUT/manifest.json.")
+@click.option("-j", "--jobs", "workers", type=click.IntRange(min=1), default=os.cpu_count() or 1,
+              show_default="the number of CPUs", help="Captures processed at once (worker processes).")
+@click.option("--scheduler", metavar="local|tcp://HOST:8786",
+              help="Run on Dask: 'local' starts a LocalCluster of -j workers here; an address uses a running "
+                   "`dask scheduler` whose workers see INPUT and OUT at the same paths "
+                   "(pip install 'mdpipe[dask]').")
+@analysis_options
+def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
+    """Process every capture in INPUT (files, or folders searched recursively for *.h5 and *.hdf5) into OUT.
+
+    Each capture's outputs go to OUT/<its path relative to the folder given, less .h5>/, published whole; a capture
+    is redone only when its size, mtime or content (SHA-256), mdpipe's version or the options changed
+    (OUT/manifest.json). Ends with OUT/features.csv and OUT/summary.png. Exit code 0 all good, 2 some
+    captures failed, 130 interrupted (what finished is kept; run again to finish).
+    """
+    if scheduler is not None and scheduler != "local" and "://" not in scheduler:
+        raise UsageError(f"--scheduler {scheduler!r}: give 'local' or an address such as tcp://HOST:8786")
+    jobs = _jobs(inputs, out_dir, options, figures=not no_figures)
+    progress = Progress(len(jobs), sys.stderr) if sys.stderr.isatty() else None
+    counts = {"done": 0, "failed": 0, "up to date": 0}
+
+    def tally(outcome):
+        counts["failed" if outcome.failed else outcome.status] += 1
+
+    def summary(outcomes):
+        if progress is not None:
+            progress.clear()
+        kept = sum(o.failed and o.status == "up to date" for o in outcomes)
+        click.echo(f"{len(jobs)} captures: {counts['done']} processed, {counts['up to date']} up to date, "
+                   f"{counts['failed']} failed" + (f" ({kept} of them unchanged since they failed)" if kept else ""))
+        _gather(out_dir, figures=not no_figures)
+
+    try:
+        _run(jobs, on_outcome=tally, debug=debug, progress=progress, workers=workers, scheduler=scheduler,
+             track=True, finish=summary)
+    except (KeyboardInterrupt, Terminated) as exc:
+        click.echo(f"Interrupted after {sum(counts.values())} of {len(jobs)} captures; each capture is published "
+                   "whole or not at all: run the same command again to finish.", err=True)
+        raise click.exceptions.Exit(EXIT_TERMINATED if isinstance(exc, Terminated) else EXIT_INTERRUPTED) from None
+    if counts["failed"]:
+        raise click.exceptions.Exit(EXIT_FAILED)
+
+
+@main.command()
+@click.argument("folder", type=click.Path(exists=True, file_okay=False, path_type=Path))
+@click.option("--no-figures", is_flag=True, help="Write the table only, no summary.png.")
+def summarize(folder, no_figures):
+    """Gather every <stem>.features.csv under FOLDER into FOLDER/features.csv (and summary.png).
+
+    Captures that failed (their <stem>.error.txt) are listed, one line each; the exit code is then 2.
+    """
+    if _gather(folder, figures=not no_figures):
+        raise click.exceptions.Exit(EXIT_FAILED)
 
 
 @main.command()
 @click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path), default=Path("reports"),
-              show_default=True)
+              show_default=True, help="Folder for the tables and figures.")
 @click.option("--configs", "configs_dir", type=click.Path(exists=True, file_okay=False, path_type=Path),
-              default=Path("configs/paper"), show_default=True)
+              default=Path("configs/paper"), show_default=True, help="Folder of the Table I and II scene YAMLs.")
 def paper(out_dir, configs_dir):
     """Reproduce the paper's Tables IV and V: paper_tables.csv, paper_tables.md and figures in --out."""
     import tempfile

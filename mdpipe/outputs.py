@@ -10,15 +10,15 @@ import tempfile
 from pathlib import Path
 
 
-def file_mode():
-    """Mode of a new file under the current umask, ``0o666 & ~umask``."""
+def file_mode(*, folder=False):
+    """Mode of a new file (``0o666 & ~umask``) or folder (``0o777 & ~umask``) under the current umask."""
     mask = os.umask(0o022)
     os.umask(mask)
-    return 0o666 & ~mask
+    return (0o777 if folder else 0o666) & ~mask
 
 
-def create_temporary(path):
-    """Create a new empty file beside ``path``; returns ``(fd, temporary_path)``.
+def create_temporary(path, *, prefix="."):
+    """Create a new empty file beside ``path``, named ``prefix + name + random``; returns ``(fd, temporary_path)``.
 
     Raises
     ------
@@ -26,7 +26,7 @@ def create_temporary(path):
         When the folder of ``path`` does not exist.
     """
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix=f"{prefix}{path.name}.", dir=path.parent)
     try:
         os.fchmod(fd, file_mode())
     except BaseException:

@@ -105,7 +105,7 @@ def test_allow_external_reads_a_trusted_link_and_checks_external_sizes(tmp_path)
         np.testing.assert_array_equal(cap.read_counts(0, 4)[0], hostile.noise_counts()[:4])
     result = CliRunner().invoke(main, ["process", str(path), "--allow-external", "--no-figures",
                                        "--out", str(tmp_path / "out")])
-    assert result.exit_code == 0 and (tmp_path / "out" / "extlink.features.csv").exists()
+    assert result.exit_code == 0 and (tmp_path / "out" / "extlink" / "extlink.features.csv").exists()
     with pytest.raises(CaptureFormatError, match=r"'/Chn1' declares \(128, 256\) int16 \(65,536 bytes\) but its "
                                                  r"external files hold 4,096 bytes of it; the rest would read as "
                                                  r"invented zeros$"):

@@ -41,14 +41,14 @@ def test_process_samples_json_and_outputs(tmp_path):
     assert records[1]["blade_length_m"] is None and records[1]["wingbeat_freq_hz"] == pytest.approx(3.0, rel=0.03)
     for stem in ("phantom4_xband", "gull_flyby"):
         for suffix in (".features.csv", ".run.json", "_range.png", "_spectrogram.png", "_spectrum.png"):
-            assert (tmp_path / f"{stem}{suffix}").stat().st_size > 0
-    table = pd.read_csv(tmp_path / "phantom4_xband.features.csv")
+            assert (tmp_path / stem / f"{stem}{suffix}").stat().st_size > 0
+    table = pd.read_csv(tmp_path / "phantom4_xband" / "phantom4_xband.features.csv")
     # beta not given: r rests on beta = 0 assumed, and the row says so
     assert table.loc[0, "class"] == "drone" and pd.isna(table.loc[0, "elevation_deg"])
     assert table.loc[0, "blade_length_m_status"] == "assumed_blades" and records[0]["n_blades_source"] == "assumed"
-    run = json.loads((tmp_path / "phantom4_xband.run.json").read_text())
+    run = json.loads((tmp_path / "phantom4_xband" / "phantom4_xband.run.json").read_text())
     assert run["process_params"]["threshold_db"] == 20.0 and run["radar"]["n_samples"] == 64
-    assert not list(tmp_path.glob(".*"))  # no temporary files left behind
+    assert not list(tmp_path.rglob(".mdpipe-partial-*"))  # no temporary files left behind
 
 
 def test_parameters_reach_the_output(tmp_path):
@@ -63,7 +63,7 @@ def test_parameters_reach_the_output(tmp_path):
     assert record["chopping_freq_hz"] == pytest.approx(140.0, rel=0.005)
     assert record["rotation_rate_hz"] is None and record["rotation_rate_hz_status"] == "blade_conflict"
     assert record["blade_length_m"] is None and record["blade_length_m_status"] == "no_rotation"
-    assert not list(tmp_path.glob("*.png"))
+    assert not list(tmp_path.rglob("*.png"))
 
 
 @pytest.mark.parametrize("make, message", [
@@ -83,7 +83,7 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, make, message):
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("Error: ") and "Traceback" not in result.output
     assert __import__("re").search(message, lines[0])
-    assert (tmp_path / "out" / "bad.error.txt").exists()
+    assert (tmp_path / "out" / "bad" / "bad.error.txt").exists()
 
 
 def test_missing_attribute_names_the_override(tmp_path):
@@ -115,13 +115,13 @@ def test_batch_folder_with_a_corrupt_file(tmp_path):
     shutil.copy(SAMPLES / "gull_flyby.h5", folder / "day2" / "gull.h5")
     (folder / "b_corrupt.h5").write_bytes((SAMPLES / "phantom4_xband.h5").read_bytes()[:4000])
     out = tmp_path / "out"
-    files = sorted(str(p) for p in folder.rglob("*.h5"))
-    result = CliRunner().invoke(main, ["process", *files, "--out", str(out), "--no-figures"])
+    result = CliRunner().invoke(main, ["process", str(folder), "--out", str(out), "--no-figures"])
     assert result.exit_code == 2
     assert "b_corrupt.h5: the HDF5 file is truncated" in result.stderr
-    assert (out / "a_phantom.features.csv").exists() and (out / "gull.features.csv").exists()  # the others finished
-    summary = CliRunner().invoke(main, ["summarize", str(out), "--no-figure"])
-    assert summary.exit_code == 1
+    assert (out / "a_phantom" / "a_phantom.features.csv").exists()  # the others finished
+    assert (out / "day2" / "gull" / "gull.features.csv").exists()
+    summary = CliRunner().invoke(main, ["summarize", str(out), "--no-figures"])
+    assert summary.exit_code == 2
     assert "2 target rows from 2 captures (bird 1, drone 1); 1 failed" in summary.output
     assert "failed: " in summary.output and "b_corrupt.h5" in summary.output
     gathered = pd.read_csv(out / "features.csv")

@@ -105,7 +105,7 @@ def test_outputs_follow_the_umask(tmp_path):
     assert (tmp_path / "t.csv").stat().st_mode & 0o777 == 0o640
 
 
-@pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 143), (signal.SIGINT, 1)])
+@pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
 def test_signal_mid_write_leaves_nothing(tmp_path, signum, code):
     """A 4-channel, 300 000-chirp capture (614 MB, several seconds); the signal comes once the temporary file exists."""
     out = tmp_path / "c.h5"

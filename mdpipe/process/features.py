@@ -186,6 +186,18 @@ def display_window_s(row, params):
     return window, hop
 
 
+def display_adjustments(params, shown, *, prf_hz, dwell_s):
+    """A note for each spectrogram setting the user gave that ``shown`` (:class:`doppler.Spectrogram`) could not
+    take as asked: beyond the rounding to whole chirps, a window outside 8 chirps to half the dwell, a hop
+    under one chirp (none is clamped silently)."""
+    notes = []
+    for name, asked, used in (("window", params.stft_window_s, shown.window_s), ("hop", params.stft_hop_s, shown.hop_s)):
+        if asked is not None and abs(used - asked) > 0.5 / prf_hz:
+            notes.append(f"spectrogram {name} {asked:g} s asked, {used:.4g} s used (the window spans 8 chirps to "
+                         f"half the dwell of {dwell_s:.4g} s, the hop at least one chirp of {1 / prf_hz:.4g} s)")
+    return notes
+
+
 def _speed_mps(doppler_hz_, wavelength_m):
     return float(-range_rate_from_doppler_mps(doppler_hz_, wavelength_m=wavelength_m))
 
@@ -567,5 +579,6 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     notes = [m.note for m in (body.velocity, band.halfwidth, bandwidth, turn.rate, tip, length, beat)
              if m.note and (m.status != OK or m is body.velocity)]
     notes = list(dict.fromkeys(notes))  # one sentence once (blade length and its tip share theirs)
+    notes.extend(display_adjustments(params, shown, prf_hz=prf_hz, dwell_s=dwell_s))
     return TargetAnalysis(row=row, spectrum=band.spectrum, spectrogram=shown, paper_extent_hz=extent,
                           flash_edges_hz=edges, notes=notes)

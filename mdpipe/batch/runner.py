@@ -1,0 +1,203 @@
+"""Run many :class:`mdpipe.batch.unit.Job` s: in this process, in a process pool, or on Dask; keep OUT's
+manifest and lock.
+
+One process pool (``concurrent.futures.ProcessPoolExecutor``, ``forkserver`` start with mdpipe's processing
+modules preloaded, so the imports are paid once, not once per capture or worker). A worker that dies (a
+segfault, the out-of-memory killer) breaks the pool: the captures it lost are run again one at a time, each
+in a fresh worker, so that the one that kills its worker is named (and failed) and the rest finish.
+"""
+
+import contextlib
+import fcntl
+import multiprocessing
+import os
+import select
+import signal
+import threading
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import replace
+from pathlib import Path
+
+from mdpipe.batch import manifest, unit
+from mdpipe.errors import MdpipeError
+from mdpipe.report import tables
+
+LOCK_NAME = ".mdpipe.lock"
+OUT_FILES = (manifest.MANIFEST_NAME, tables.SUMMARY_TABLE, "summary.png")  # written into OUT itself
+MANIFEST_INTERVAL_S = 1.0  # the manifest is rewritten at most this often during a run (and at its end)
+PRELOAD = ["mdpipe.batch.unit"]
+PRELOAD_FIGURES = ["mdpipe.report.plots"]
+
+
+class OutputFolderError(MdpipeError):
+    """OUT cannot be used (not writable, not a folder)."""
+
+
+@contextlib.contextmanager
+def locked(out_dir, on_wait=None):
+    """Hold ``out_dir``'s lock file (flock) for a run; a second run waits, after ``on_wait(message)``."""
+    out_dir = Path(out_dir)
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        fd = os.open(out_dir / LOCK_NAME, os.O_RDWR | os.O_CREAT, tables.FILE_MODE)
+    except OSError as exc:
+        raise OutputFolderError(f"{out_dir}: cannot write into this output folder ({exc.strerror}); "
+                                "choose a writable --out") from None
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            holder = os.pread(fd, 64, 0).decode(errors="replace").strip() or "?"
+            if on_wait is not None:
+                on_wait(f"{out_dir} is in use by another mdpipe run (pid {holder}); waiting for it to finish")
+            fcntl.flock(fd, fcntl.LOCK_EX)
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, str(os.getpid()).encode(), 0)
+        yield
+    finally:
+        os.close(fd)  # releases the lock
+
+
+def _watch(parent_pid):
+    """Exit as soon as the process ``parent_pid`` has gone (killed by SIGKILL, say): a pool worker holds its
+    own queue's write end and would otherwise wait for work forever."""
+    try:
+        fd = os.pidfd_open(parent_pid)
+        select.select([fd], [], [])
+    except (AttributeError, OSError):  # no pidfd (not Linux >= 5.3): poll
+        while True:
+            time.sleep(0.5)
+            try:
+                os.kill(parent_pid, 0)
+            except ProcessLookupError:
+                break
+            except PermissionError:
+                continue
+    os._exit(1)
+
+
+def _start_worker(parent_pid):
+    """Ctrl-C reaches the whole process group: the parent decides. A worker ends with the batch's process."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(target=_watch, args=(parent_pid,), daemon=True).start()
+
+
+def _stop_workers(executor):
+    for process in list((getattr(executor, "_processes", None) or {}).values()):
+        with contextlib.suppress(OSError):
+            process.terminate()
+
+
+def _pool_round(jobs, workers):
+    """Yield the outcomes of ``jobs`` from one pool; return the jobs lost when a worker died."""
+    context = multiprocessing.get_context("forkserver")
+    context.set_forkserver_preload(PRELOAD + (PRELOAD_FIGURES if any(job.figures is not None for job in jobs) else []))
+    executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_start_worker,
+                                   initargs=(os.getpid(),))
+    finished, lost = False, []
+    try:
+        futures = {executor.submit(unit.run, job): job for job in jobs}
+        for future in as_completed(futures):
+            try:
+                outcome = future.result()
+            except BrokenProcessPool:
+                lost.append(futures[future])
+                continue
+            yield outcome
+        finished = True
+    finally:
+        if not finished:
+            _stop_workers(executor)
+        executor.shutdown(wait=True, cancel_futures=True)
+    return lost
+
+
+def _pool(jobs, workers):
+    queue, alone = list(jobs), False
+    while queue:
+        round_jobs, queue = (queue[:1], queue[1:]) if alone else (queue, [])
+        lost = yield from _pool_round(round_jobs, 1 if alone else min(workers, len(round_jobs)))
+        if lost and alone:
+            yield unit.failure(lost[0], f"{lost[0].capture}: its worker process died (killed by the system, out "
+                                        "of memory say, or a crash inside a library)")
+        elif lost:
+            alone, queue = True, lost + queue
+
+
+def execute(jobs, *, workers=1, scheduler=None):
+    """Yield the :class:`mdpipe.batch.unit.Outcome` of every job as it finishes (in any order).
+
+    ``scheduler`` None: in this process for one worker, else a process pool of ``workers``; ``local`` or a
+    ``tcp://host:port`` address: Dask (:mod:`mdpipe.batch.dask_runner`).
+    """
+    if scheduler is not None:
+        from mdpipe.batch import dask_runner
+
+        yield from dask_runner.execute(jobs, scheduler=scheduler, workers=workers)
+    elif workers == 1 or len(jobs) == 1:
+        for job in jobs:
+            yield unit.run(job)
+    else:
+        yield from _pool(jobs, workers)
+
+
+def _save(out_dir, records, notify):
+    try:
+        manifest.save(out_dir, records)
+    except OSError as exc:  # the outputs stand; the next run redoes what the manifest could not record
+        if notify is not None:
+            notify(f"Warning: cannot write {Path(out_dir) / manifest.MANIFEST_NAME} ({exc}); the next run will "
+                   "redo the captures it does not list")
+
+
+def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify=None, finish=None):
+    """Run ``jobs`` (all with one ``out_dir``, or None) under OUT's lock; returns their outcomes.
+
+    With ``track`` the manifest decides what is redone and is updated as captures finish; without, the
+    manifest forgets the captures published (they were made with other settings). Temporary folders left by an
+    earlier interrupted or killed run are removed first. ``notify(text)`` hears of waits and warnings;
+    ``finish(outcomes)`` runs at the end, still under the lock (the folder's summary).
+    """
+    out_dir = jobs[0].out_dir if jobs else None
+    if out_dir is None:
+        return [_report(outcome, on_outcome) for outcome in execute(jobs, workers=workers, scheduler=scheduler)]
+    leftovers = [job.folder for job in jobs] + [Path(out_dir) / name for name in OUT_FILES]
+    with locked(out_dir, notify):
+        tables.remove_partials(leftovers)
+        records = manifest.load(out_dir)
+        for job in jobs:
+            before = records.get(job.key, {}).get("input")
+            if notify is not None and before not in (None, str(Path(job.capture).resolve())):
+                notify(f"Warning: {job.folder} held the outputs of {before}; now those of {job.capture}")
+        if track:
+            jobs = [replace(job, track=True, previous=records.get(job.key)) for job in jobs]
+        outcomes, saved_at, interval_s = [], time.monotonic(), MANIFEST_INTERVAL_S
+        try:
+            with contextlib.closing(execute(jobs, workers=workers, scheduler=scheduler)) as stream:
+                for outcome in stream:
+                    if outcome.record is not None:
+                        records[outcome.key] = outcome.record
+                    else:
+                        records.pop(outcome.key, None)
+                    if track and time.monotonic() - saved_at > interval_s:
+                        began = time.monotonic()
+                        _save(out_dir, records, notify)
+                        saved_at = time.monotonic()
+                        interval_s = max(MANIFEST_INTERVAL_S, 10 * (saved_at - began))  # <= 10 % of the run
+                    outcomes.append(_report(outcome, on_outcome))
+            if finish is not None:
+                finish(outcomes)
+        finally:
+            if track or (Path(out_dir) / manifest.MANIFEST_NAME).exists():
+                _save(out_dir, records, notify)
+            if scheduler is None:
+                tables.remove_partials(leftovers)
+    return outcomes
+
+
+def _report(outcome, on_outcome):
+    if on_outcome is not None:
+        on_outcome(outcome)
+    return outcome

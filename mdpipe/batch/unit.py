@@ -1,0 +1,170 @@
+"""One capture, read -> analyse -> publish: the unit of work of ``mdpipe process``, ``mdpipe batch`` and the
+Dask workers.
+
+Every exception raised while one capture is read, analysed or written ends here as that capture's one-line
+error (its traceback kept for the error file and ``--debug``), so the run goes on. Interruptions
+(``KeyboardInterrupt``, ``SystemExit``) pass through; :func:`mdpipe.report.tables.publish` then leaves the
+capture's published folder as it was.
+"""
+
+import time
+import traceback
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Optional
+
+from mdpipe.batch import manifest
+from mdpipe.errors import MdpipeError
+from mdpipe.params import FigureParams, ProcessParams
+from mdpipe.process.pipeline import process_capture
+from mdpipe.report import tables
+
+DONE, FAILED, UP_TO_DATE = "done", "failed", "up to date"
+
+
+@dataclass(frozen=True)
+class Job:
+    """What to do with one capture.
+
+    Parameters
+    ----------
+    capture : str
+        Input file.
+    key : str
+        Output folder relative to ``out_dir`` (POSIX path), from :mod:`mdpipe.batch.inputs`.
+    out_dir : str or None
+        Folder to publish into; None publishes nothing (``process --json`` without ``--out``).
+    params : ProcessParams
+    reader : dict
+        ``frame_counter`` and ``overrides`` for :func:`mdpipe.io.open_capture`.
+    figures : FigureParams or None
+        Draw the per-capture figures with these choices; None: no figures.
+    track : bool
+        Fingerprint the input for the manifest and skip it when ``previous`` still describes it.
+    previous : dict or None
+        The manifest record of the last run.
+    given : str or None
+        The capture's path as the user gave it, for the tables, when ``capture`` had to be made absolute
+        (Dask workers run in other folders); None: ``capture``.
+    """
+
+    capture: str
+    key: str
+    out_dir: Optional[str]
+    params: ProcessParams
+    reader: dict
+    figures: Optional[FigureParams] = FigureParams()
+    track: bool = False
+    previous: Optional[dict] = None
+    given: Optional[str] = None
+
+    @property
+    def folder(self):
+        return Path(self.out_dir) / self.key
+
+    def settings(self):
+        """What, besides the input and mdpipe's version, the outputs depend on."""
+        return {"process": asdict(self.params), "reader": self.reader,
+                "figures": None if self.figures is None else asdict(self.figures)}
+
+
+@dataclass
+class Outcome:
+    """What became of one capture: ``status`` is ``done``, ``failed`` or ``up to date`` (``failed`` then tells
+    whether the outputs kept are an error); ``record`` is the manifest record of what is published (None when
+    nothing is)."""
+
+    capture: str
+    key: str
+    status: str
+    failed: bool
+    message: str = ""
+    traceback: Optional[str] = None
+    rows: list = field(default_factory=list)
+    record: Optional[dict] = None
+    seconds: float = 0.0
+
+
+def _write_outputs(result, job, folder):
+    stem = folder / Path(job.capture).stem
+    tables.write_features_csv(result.rows, stem.with_name(stem.name + tables.FEATURES_SUFFIX))
+    tables.write_run_json(stem.with_name(stem.name + ".run.json"), capture=job.capture, params=job.params,
+                          layout=result.layout, radar=result.params)
+    if job.figures is not None:
+        from mdpipe.report import plots
+
+        plots.range_figure(result, stem.with_name(stem.name + "_range.png"))
+        if result.analyses:
+            plots.spectrogram_figure(result, stem.with_name(stem.name + "_spectrogram.png"), job.figures)
+            plots.spectrum_figure(result, stem.with_name(stem.name + "_spectrum.png"), job.figures)
+
+
+def one_line(capture, exc, *, writing=False):
+    """The message of a failed capture, on one line, naming the capture."""
+    text = str(exc)
+    if writing:
+        text = f"{capture}: cannot write its outputs: {text}"
+    elif not isinstance(exc, (MdpipeError, OSError)):
+        text = f"{capture}: internal error, {type(exc).__name__}: {text}"
+    elif str(capture) not in text:
+        text = f"{capture}: {text}"
+    return " ".join(text.split())
+
+
+def failure(job, message, trace=None, *, keep_trace=False, identity=None, started=None):
+    """The outcome of a failed capture: its stale outputs replaced by its error file (with ``trace`` when
+    ``keep_trace``), or removed when even that cannot be written (the message then says so, with the cause)."""
+    outcome = Outcome(job.capture, job.key, FAILED, True, message, trace,
+                      seconds=time.perf_counter() - started if started else 0.0)
+    if job.out_dir is None:
+        return outcome
+    error_file = job.folder / (Path(job.capture).stem + tables.ERROR_SUFFIX)
+    try:
+        names = tables.publish(job.folder, lambda tmp: tables.write_error(
+            Path(tmp) / error_file.name, job.capture, message, trace if keep_trace else None))
+    except Exception as exc:  # a full disk or a read-only folder: say so, keep the original cause
+        try:
+            tables.unpublish(job.folder)
+        except OSError:
+            pass
+        outcome.message = f"{message}; its error file {error_file} could not be written either: {exc}"
+        return outcome
+    if keep_trace:
+        outcome.message = f"{message} (traceback in {error_file})"
+    if identity is not None:
+        outcome.record = {**identity, "status": FAILED, "error": message, "outputs": names}
+    return outcome
+
+
+def run(job):
+    """Read, analyse and publish ``job``'s capture; returns an :class:`Outcome` and never raises an Exception."""
+    started = time.perf_counter()
+    identity = None
+    try:
+        if job.track:
+            identity = manifest.identity(job.capture, manifest.fingerprint(job.capture), job.settings())
+            if manifest.up_to_date(job.previous, identity, job.folder):
+                return Outcome(job.capture, job.key, UP_TO_DATE, job.previous["status"] == FAILED,
+                               job.previous.get("error", ""), record=job.previous)
+        result = process_capture(job.capture, job.params, **job.reader)
+        for row in result.rows:
+            row["file"] = job.given or job.capture
+    except Exception as exc:
+        return failure(job, one_line(job.capture, exc), _trace(exc),
+                       keep_trace=not isinstance(exc, (MdpipeError, OSError)), identity=identity, started=started)
+    outcome = Outcome(job.capture, job.key, DONE, False, rows=result.rows)
+    if job.out_dir is not None:
+        try:
+            names = tables.publish(job.folder, lambda tmp: _write_outputs(result, job, Path(tmp)))
+        except Exception as exc:  # a full disk (OSError), or a figure that cannot be drawn (a bug: keep the trace)
+            writing = isinstance(exc, OSError)
+            return failure(job, one_line(job.capture, exc, writing=writing), _trace(exc), keep_trace=not writing,
+                           identity=identity, started=started)
+        if identity is not None:
+            outcome.record = {**identity, "status": "ok", "outputs": names}
+    outcome.seconds = time.perf_counter() - started
+    return outcome
+
+
+def _trace(exc):
+    return "".join(traceback.format_exception(type(exc), exc, exc.__traceback__))

@@ -1,0 +1,300 @@
+"""mdpipe batch: mirrored outputs, the manifest's redo rule, failures that replace stale outputs, a crash inside
+one capture, a full disk, a read-only OUT, and Dask against the process pool."""
+
+import csv
+import errno
+import json
+import os
+import shutil
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from mdpipe.batch import manifest, unit
+from mdpipe.cli import main
+from mdpipe.report import tables
+
+SAMPLES = Path(__file__).resolve().parents[1] / "data_samples"
+
+
+def batch(*args):
+    return CliRunner().invoke(main, ["batch", *map(str, args)])
+
+
+@pytest.fixture
+def captures(tmp_path):
+    """A folder with nested subfolders, one stem twice, and a name with a space and a colon."""
+    folder = tmp_path / "in"
+    for relative, sample in (("day1/x.h5", "phantom4_xband.h5"), ("day2/x.h5", "gull_flyby.h5"),
+                             ("drone 2: pass.h5", "phantom4_xband.h5")):
+        (folder / relative).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(SAMPLES / sample, folder / relative)
+    return folder
+
+
+def published(out):
+    """Every published capture folder under ``out``, relative, with the files it holds."""
+    return {p.parent.relative_to(out).as_posix(): sorted(q.name for q in p.parent.iterdir())
+            for p in out.rglob(tables.MARKER)}
+
+
+def test_batch_mirrors_folders_and_keeps_same_stems_apart(tmp_path, captures):
+    out = tmp_path / "out"
+    result = batch(captures, "--out", out, "-j", 2)
+    assert result.exit_code == 0, result.output
+    assert "3 captures: 3 processed, 0 up to date, 0 failed" in result.output
+    assert result.stderr == ""  # not a terminal: no progress bar
+    figures = ["_range.png", "_spectrogram.png", "_spectrum.png"]
+    assert published(out) == {
+        "day1/x": sorted([tables.MARKER, "x.features.csv", "x.run.json"] + [f"x{f}" for f in figures]),
+        "day2/x": sorted([tables.MARKER, "x.features.csv", "x.run.json"] + [f"x{f}" for f in figures]),
+        "drone 2: pass": sorted([tables.MARKER, "drone 2: pass.features.csv", "drone 2: pass.run.json"]
+                                + [f"drone 2: pass{f}" for f in figures]),
+    }
+    assert "drone" in (out / "day1/x/x.features.csv").read_text() and "bird" in (out / "day2/x/x.features.csv").read_text()
+    assert sorted(manifest.load(out)) == ["day1/x", "day2/x", "drone 2: pass"]
+    assert (out / "summary.png").stat().st_size > 0
+    assert not list(out.rglob(f"{tables.PARTIAL_PREFIX}*"))
+    umask = os.umask(0o022)
+    os.umask(umask)
+    for path in [out / "features.csv", out / "manifest.json", out / "day2/x/x_spectrum.png"]:
+        assert path.stat().st_mode & 0o777 == 0o666 & ~umask, path
+    assert (out / "day2/x").stat().st_mode & 0o777 == 0o777 & ~umask
+
+
+def test_progress_line_on_a_terminal(monkeypatch):
+    import io
+
+    from mdpipe import cli
+
+    clock = iter([100.0, 110.0, 130.0])  # started at 100 s; 1 of 4 done at 110 s; 2 at 130 s
+    monkeypatch.setattr(cli.time, "monotonic", lambda: next(clock))
+    stream = io.StringIO()
+    progress = cli.Progress(4, stream)
+    progress.update(unit.Outcome("a.h5", "a", unit.DONE, False))
+    progress.update(unit.Outcome("b.h5", "b", unit.FAILED, True))
+    frames = stream.getvalue().split("\r")[1:]
+    # ETA = elapsed / done x remaining: 10 s x 3 = 30 s, then 15 s x 2 = 30 s
+    assert frames == ["[........................] 0/4, 0 failed, ETA ? ",
+                      "[######..................] 1/4, 0 failed, ETA 00:00:30 ",
+                      "[############............] 2/4, 1 failed, ETA 00:00:30 "]
+
+
+def test_summary_table_keeps_types(tmp_path):
+    folder = tmp_path / "in"
+    folder.mkdir()
+    for name in ("clutter_only.h5", "phantom4_xband.h5", "gull_flyby.h5"):
+        shutil.copy(SAMPLES / name, folder / name)
+    out = tmp_path / "out"
+    assert batch(folder, "--out", out, "-j", 1, "--no-figures").exit_code == 0
+    columns, rows, errors = tables.gather(out)
+    header, *merged = csv.reader((out / "features.csv").read_text().splitlines())
+    by_file = {line[0]: line for line in merged}
+    clutter, drone = by_file[str(folder / "clutter_only.h5")], by_file[str(folder / "phantom4_xband.h5")]
+    # the none row has no target (empty, not 0.0 or nan); the drone's target 0 stays 0, its aliased False
+    assert clutter[header.index("target")] == "" and drone[header.index("target")] == "0"
+    assert drone[header.index("aliased")] == "False" and drone[header.index("n_blades")] == "2"
+    typed = tables.frame(columns, rows)
+    assert str(typed["target"].dtype) == "Int64" and str(typed["aliased"].dtype) == "boolean"
+    assert str(typed["range_bin"].dtype) == "Int64" and typed["snr_db"].dtype.kind == "f"
+    assert errors == []
+
+
+def _mtimes(out):
+    return {key: (out / key / f"{Path(key).name}.features.csv").stat().st_mtime_ns for key in manifest.load(out)}
+
+
+def test_manifest_redoes_exactly_what_changed(tmp_path, captures):
+    out = tmp_path / "out"
+    assert batch(captures, "--out", out, "-j", 1, "--no-figures").exit_code == 0
+    first = _mtimes(out)
+    again = batch(captures, "--out", out, "-j", 1, "--no-figures")
+    assert "3 captures: 0 processed, 3 up to date, 0 failed" in again.output and _mtimes(out) == first
+
+    stat = (captures / "day2/x.h5").stat()  # touched: the mtime alone changed
+    os.utime(captures / "day2/x.h5", ns=(stat.st_atime_ns, stat.st_mtime_ns + 10**9))
+    assert "1 processed, 2 up to date" in batch(captures, "--out", out, "-j", 1, "--no-figures").output
+    second = _mtimes(out)
+    assert [k for k in first if first[k] != second[k]] == ["day2/x"]
+
+    path = captures / "day1/x.h5"  # same size and mtime, one byte of content changed: the hash tells
+    stat = path.stat()
+    data = bytearray(path.read_bytes())
+    data[-1] ^= 1
+    path.write_bytes(bytes(data))
+    os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+    assert "1 processed, 2 up to date" in batch(captures, "--out", out, "-j", 1, "--no-figures").output
+    third = _mtimes(out)
+    assert [k for k in second if second[k] != third[k]] == ["day1/x"]
+
+    records = manifest.load(out)  # a capture made by another mdpipe version
+    records["drone 2: pass"]["mdpipe_version"] = "0.0.1"
+    manifest.save(out, records)
+    assert "1 processed, 2 up to date" in batch(captures, "--out", out, "-j", 1, "--no-figures").output
+    fourth = _mtimes(out)
+    assert [k for k in third if third[k] != fourth[k]] == ["drone 2: pass"]
+
+    assert "3 processed, 0 up to date" in batch(captures, "--out", out, "-j", 1, "--no-figures", "--blades", 3).output
+    assert json.loads((out / "day1/x/x.run.json").read_text())["process_params"]["n_blades"] == 3
+
+    shutil.rmtree(out / "day2/x")  # outputs removed by hand: redone
+    assert "1 processed, 2 up to date" in batch(captures, "--out", out, "-j", 1, "--no-figures", "--blades", 3).output
+
+    other = tmp_path / "other"  # another folder with a day2/x.h5, into the same OUT: redone, and said
+    (other / "day2").mkdir(parents=True)
+    shutil.copy(captures / "day2/x.h5", other / "day2/x.h5")
+    result = batch(other, "--out", out, "-j", 1, "--no-figures", "--blades", 3)
+    assert "1 captures: 1 processed, 0 up to date" in result.output
+    assert result.stderr == (f"Warning: {out / 'day2/x'} held the outputs of {captures / 'day2/x.h5'}; "
+                             f"now those of {other / 'day2/x.h5'}\n")
+
+
+def test_a_capture_that_now_fails_loses_its_stale_outputs(tmp_path, captures):
+    out = tmp_path / "out"
+    assert batch(captures, "--out", out, "-j", 2).exit_code == 0
+    (captures / "day2/x.h5").write_bytes((SAMPLES / "gull_flyby.h5").read_bytes()[:4000])
+    result = batch(captures, "--out", out, "-j", 2)
+    assert result.exit_code == 2
+    (line,) = result.stderr.splitlines()
+    assert line.startswith(f"Error: {captures / 'day2/x.h5'}: the HDF5 file is truncated")
+    assert published(out)["day2/x"] == sorted([tables.MARKER, "x.error.txt"])
+    assert "3 captures: 0 processed, 2 up to date, 1 failed" in result.output
+    assert "2 target rows from 2 captures (drone 2); 1 failed" in result.output
+    assert manifest.load(out)["day2/x"]["status"] == "failed"
+    kept = batch(captures, "--out", out, "-j", 2)  # unchanged since it failed: still a failure, not redone
+    assert kept.exit_code == 2 and "0 processed, 2 up to date, 1 failed (1 of them unchanged since they failed)" in kept.output
+
+
+def test_a_crash_inside_one_capture_is_its_one_line_error(tmp_path, captures, monkeypatch):
+    real = unit.process_capture
+
+    def crash_on_day2(path, *args, **kwargs):
+        if "day2" in str(path):
+            raise ValueError("cannot reshape array of size 0 into shape (0,newaxis)")
+        return real(path, *args, **kwargs)
+
+    monkeypatch.setattr(unit, "process_capture", crash_on_day2)
+    out = tmp_path / "out"
+    result = batch(captures, "--out", out, "-j", 1, "--no-figures")
+    assert result.exit_code == 2
+    error_file = out / "day2/x/x.error.txt"
+    assert result.stderr.splitlines() == [
+        f"Error: {captures / 'day2/x.h5'}: internal error, ValueError: cannot reshape array of size 0 into shape "
+        f"(0,newaxis) (traceback in {error_file})"]
+    assert "Traceback (most recent call last)" in error_file.read_text() and "crash_on_day2" in error_file.read_text()
+    assert "2 processed, 0 up to date, 1 failed" in result.output
+    assert (out / "day1/x/x.features.csv").exists() and (out / "drone 2: pass/drone 2: pass.features.csv").exists()
+    debug = CliRunner().invoke(main, ["process", str(captures / "day2/x.h5"), "--out", str(out), "--debug"])
+    assert debug.exit_code == 2 and "Traceback (most recent call last)" in debug.stderr
+
+
+def test_full_disk_leaves_no_stale_or_partial_outputs(tmp_path, captures, monkeypatch):
+    out = tmp_path / "out"
+    assert batch(captures / "day1", "--out", out, "-j", 1, "--no-figures").exit_code == 0
+
+    def no_space(path, write):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+
+    monkeypatch.setattr(tables, "atomic_write", no_space)  # every output and error file; not the manifest
+    result = batch(captures / "day1", "--out", out, "-j", 1, "--no-figures", "--blades", 3)
+    assert result.exit_code == 2
+    line, summary = result.stderr.splitlines()
+    assert summary == f"Error: [Errno 28] No space left on device: '{out / 'features.csv'}'"
+    assert line.startswith(f"Error: {captures / 'day1/x.h5'}: cannot write its outputs: [Errno 28] No space left")
+    assert f"its error file {out / 'x/x.error.txt'} could not be written either: [Errno 28] No space left" in line
+    assert not (out / "x").exists() and not list(out.rglob(f"{tables.PARTIAL_PREFIX}*"))  # stale table gone
+    assert manifest.load(out) == {}
+    monkeypatch.undo()
+    assert "1 processed, 0 up to date" in batch(captures / "day1", "--out", out, "-j", 1, "--no-figures").output
+
+
+def test_read_only_output_folder_is_one_line_exit_1(tmp_path):
+    if os.geteuid() == 0:  # root writes through permission bits; sysfs is mounted read-only for everyone
+        out = Path("/sys/fs/mdpipe-out")
+    else:
+        out = tmp_path / "ro"
+        out.mkdir()
+        out.chmod(0o555)
+    result = batch(SAMPLES / "gull_flyby.h5", "--out", out)
+    assert result.exit_code == 1
+    assert result.output.strip().splitlines() == [result.output.strip()]
+    assert result.output.startswith(f"Error: {out}: cannot write into this output folder (")
+    assert result.output.rstrip().endswith("); choose a writable --out")
+
+
+def test_an_output_folder_mdpipe_did_not_write_is_left_alone(tmp_path):
+    folder = tmp_path / "in"
+    folder.mkdir()
+    shutil.copy(SAMPLES / "gull_flyby.h5", folder / "gull_flyby.h5")
+    (folder / "gull_flyby").mkdir()
+    (folder / "gull_flyby" / "notes.txt").write_text("mine")
+    result = CliRunner().invoke(main, ["process", str(folder / "gull_flyby.h5"), "--out", str(folder),
+                                       "--no-figures"])
+    assert result.exit_code == 2 and "was not written by mdpipe (left as it is)" in result.stderr
+    assert (folder / "gull_flyby" / "notes.txt").read_text() == "mine" and (folder / "gull_flyby.h5").exists()
+
+
+class KillsItsWorker(dict):
+    """Reader options whose unpickling ends the worker process at once, as a segfault would."""
+
+    def __reduce__(self):
+        return os._exit, (1,)
+
+
+def test_a_worker_that_dies_fails_only_its_capture(tmp_path):
+    from dataclasses import replace
+
+    from mdpipe.batch import runner
+    from mdpipe.params import ProcessParams
+
+    good = [unit.Job(str(SAMPLES / name), Path(name).stem, str(tmp_path), ProcessParams(),
+                     {"frame_counter": "auto", "overrides": {}}, figures=None)
+            for name in ("phantom4_xband.h5", "gull_flyby.h5", "clutter_only.h5")]
+    dying = replace(good[1], key="dies", reader=KillsItsWorker())
+    outcomes = {o.key: o for o in runner.run([good[0], dying, good[1], good[2]], workers=2, track=True)}
+    assert {key: o.status for key, o in outcomes.items()} == {
+        "phantom4_xband": "done", "gull_flyby": "done", "clutter_only": "done", "dies": "failed"}
+    assert outcomes["dies"].message == (f"{SAMPLES / 'gull_flyby.h5'}: its worker process died (killed by the system, "
+                                        "out of memory say, or a crash inside a library)")
+    assert (tmp_path / "dies" / "gull_flyby.error.txt").exists()
+    assert sorted(manifest.load(tmp_path)) == ["clutter_only", "gull_flyby", "phantom4_xband"]  # redone next run
+
+
+def test_dask_missing_is_one_line(tmp_path, monkeypatch):
+    monkeypatch.setitem(__import__("sys").modules, "distributed", None)
+    result = batch(SAMPLES / "gull_flyby.h5", "--out", tmp_path / "out", "--scheduler", "local")
+    assert result.exit_code == 1
+    assert result.output == ("Error: --scheduler needs Dask distributed, which is not installed: "
+                             "pip install 'mdpipe[dask]'\n")
+
+
+def test_dask_local_cluster_gives_the_pool_tables(tmp_path, monkeypatch):
+    pytest.importorskip("distributed", reason="Dask is an optional extra: pip install 'mdpipe[dask]'")
+    monkeypatch.chdir(tmp_path)  # relative paths: the Dask workers run in another folder
+    folder = Path("in")
+    folder.mkdir()
+    for name in ("phantom4_xband.h5", "gull_flyby.h5", "clutter_only.h5"):
+        shutil.copy(SAMPLES / name, folder / name)
+    pool, cluster = Path("pool"), Path("dask")
+    assert batch(folder, "--out", pool, "-j", 2, "--no-figures").exit_code == 0
+    result = batch(folder, "--out", cluster, "-j", 2, "--no-figures", "--scheduler", "local")
+    assert result.exit_code == 0, result.output
+    assert "3 captures: 3 processed" in result.output
+    assert (cluster / "features.csv").read_bytes() == (pool / "features.csv").read_bytes()
+    assert "\nin/gull_flyby.h5," in (cluster / "features.csv").read_text()  # the path as given
+    for name in ("phantom4_xband", "gull_flyby", "clutter_only"):
+        table = f"{name}/{name}.features.csv"
+        assert (cluster / table).read_bytes() == (pool / table).read_bytes()
+
+
+def test_leftovers_of_a_killed_run_are_removed_and_nothing_else(tmp_path):
+    out = tmp_path / "out"
+    keep = [out / ".mdpipe-partial-other.abc123", out / "x" / "x.features.csv", out / "notes.txt"]
+    gone = [out / ".mdpipe-partial-x.k2j3_q", out / ".mdpipe-partial-x.old.1a2b3c4d",
+            out / ".mdpipe-partial-features.csv.zz9"]
+    for path in keep + gone:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text("")
+    tables.remove_partials([out / "x", out / "features.csv"])
+    assert [p.exists() for p in keep] == [True, True, True] and [p.exists() for p in gone] == [False, False, False]
