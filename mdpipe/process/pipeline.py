@@ -13,6 +13,7 @@ from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analy
 
 MIN_CHIRPS = 64
 TRACK_POINTS = 256  # range track points kept per target (for its range rate and extent)
+SAME_TRACK_BINS = 1.5  # two detections whose tracks are this close on average (range bins) are one target
 
 
 @dataclass
@@ -35,8 +36,26 @@ class CaptureResult:
     process: object
 
 
-def target_signals(reader, stats, detections, process):
-    """Pass 2: each detection's slow time along its fractional range track, and where it went.
+def target_tracks(stats, detections, process, n_samples):
+    """Each detection's fractional range track (padded-grid bins per chirp) and the chunks it spends in
+    each gate bin, less the detections whose track follows a stronger one's (the same target: a mover's
+    mean power peaks at several bins along its path, and each is followed onto the same track).
+
+    Returns
+    -------
+    list of (detection, track_bins (n_chirps,), visits (B,))
+    """
+    kept = []
+    for detection in detections:  # strongest first
+        track_bins, visits = selection.chirp_track(stats, detection, window=process.range_window,
+                                                   n_samples=n_samples, zero_pad=process.zero_pad)
+        if all(np.mean(np.abs(track_bins - other)) >= SAME_TRACK_BINS * process.zero_pad for _, other, _ in kept):
+            kept.append((detection, track_bins, visits))
+    return kept
+
+
+def target_signals(reader, stats, tracks, process):
+    """Pass 2: each target's slow time along its fractional range track (:func:`target_tracks`).
 
     The channels are combined with one weight vector per target, the dominant eigenvector of the
     moving covariance summed over the bins it visits (chunk-weighted): one spatial signature, so
@@ -46,22 +65,20 @@ def target_signals(reader, stats, detections, process):
     -------
     list of (:class:`~mdpipe.process.features.RangeTrack`, signal (n_chirps,) complex, rx_gain_db)
     """
-    tracks, weights, gains = [], [], []
-    for detection in detections:
-        track_bins, visits = selection.chirp_track(stats, detection, window=process.range_window,
-                                                   n_samples=reader.params.n_samples, zero_pad=process.zero_pad)
+    weights, gains = [], []
+    for _, _, visits in tracks:
         weight, gain = selection.channel_weights(np.tensordot(visits, stats.covariance, axes=1)[None])
-        tracks.append(track_bins)
         weights.append(weight[0])
         gains.append(float(gain[0]))
-    signals = ranging.slow_time(reader, np.array(tracks), np.array(weights), window=process.range_window,
+    bins = np.array([track_bins for _, track_bins, _ in tracks])
+    signals = ranging.slow_time(reader, bins, np.array(weights), window=process.range_window,
                                 zero_pad=process.zero_pad, dtype=process.dtype, all_bins=process.range_bins == "all")
     params = reader.params
     every = max(1, stats.n_chirps // TRACK_POINTS)
     t_s = np.arange(0, stats.n_chirps, every) / params.prf_hz
     return [(RangeTrack(t_s=t_s, range_m=ranging.bin_range_m(track_bins[::every], params, process.zero_pad),
                         bin_m=params.range_bin_m), signals[:, i], gain)
-            for i, (track_bins, gain) in enumerate(zip(tracks, gains))]
+            for i, (track_bins, gain) in enumerate(zip(bins, gains))]
 
 
 def _base_row(path, stats, process, params):
@@ -126,7 +143,9 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             row["notes"] = "; ".join([no_detection_note(test, process)] + capture_notes)
             return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row],
                                  noise_power=noise, process=process)
-        targets = target_signals(reader, stats, detections, process)
+        tracks = target_tracks(stats, detections, process, params.n_samples)
+        detections = [detection for detection, _, _ in tracks]
+        targets = target_signals(reader, stats, tracks, process)
         layout = reader.layout.describe()
     for index, (detection, (track, signal, rx_gain_db)) in enumerate(zip(detections, targets)):
         analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
