@@ -99,7 +99,8 @@ def dealias_velocity(doppler_mps, *, span_mps, track):
 
     The Doppler gives the range rate only modulo the unambiguous span ``lambda PRF / 2``; the range
     track (bins of c / 2B over the dwell) gives it coarsely but without ambiguity. When the track's
-    uncertainty is below a quarter span the alias nearest the track's rate is the velocity; otherwise
+    uncertainty is below a quarter span the alias nearest the track's rate is the velocity (if it lies
+    within twice that uncertainty of it: else the two disagree and nothing is reported); otherwise
     the Doppler stands only when every other alias the track allows is faster than ``MAX_SPEED_MPS``.
     """
     if track is None:
@@ -107,6 +108,10 @@ def dealias_velocity(doppler_mps, *, span_mps, track):
     rate, bound = track.range_rate_mps()
     if bound < span_mps / 4:
         k = round((rate - doppler_mps) / span_mps)
+        if abs(doppler_mps + k * span_mps - rate) > 2 * bound:  # no alias agrees with the track
+            return withheld("velocity_ambiguous", f"body velocity not estimable: no alias of the Doppler's "
+                            f"{doppler_mps:.3g} m/s (modulo {span_mps:.3g} m/s) agrees with the range track's "
+                            f"{rate:.2g} +- {bound:.2g} m/s")
         note = "" if k == 0 else (f"body velocity unfolded by {k:+d} x {span_mps:.3g} m/s: the range track moves at "
                                   f"{rate:.2g} +- {bound:.2g} m/s")
         return Measured(doppler_mps + k * span_mps, OK, note)
@@ -126,8 +131,9 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     interference skews the spectrum) there is no body line. The track is the running median of the
     frame peaks over ``BODY_TRACK_FRAMES`` frames, so a frame where a rotor line outshines the body
     does not move it; if fewer than ``BODY_STEADY_SHARE`` of the frames peak on the track, the body
-    is not steady enough to demodulate. The velocity is the median of the track, unfolded with the
-    range ``track`` where the Doppler alone is ambiguous (:func:`dealias_velocity`).
+    is not steady enough to demodulate. The velocity is the mean of the track (the mean range rate
+    over the dwell; the running median has already put aside frames where a rotor line won),
+    unfolded with the range ``track`` where the Doppler alone is ambiguous (:func:`dealias_velocity`).
     """
     frame_s = min(BODY_FRAME_S, len(signal) / prf_hz)
     spec = doppler.spectrogram(signal, prf_hz=prf_hz, window_s=frame_s, hop_s=frame_s / 4)
@@ -149,7 +155,7 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
         return BodyMotion(None, withheld("body_unsteady", f"body velocity not estimable: the strongest line lies on "
                                          f"the body track in only {on_track:.0%} of the frames"), signal)
     doppler_track = np.interp(np.arange(len(signal)) / prf_hz, spec.t_s, frame_track)
-    velocity = float(range_rate_from_doppler_mps(float(np.median(doppler_track)), wavelength_m=wavelength_m))
+    velocity = float(range_rate_from_doppler_mps(float(np.mean(doppler_track)), wavelength_m=wavelength_m))
     return BodyMotion(doppler_track, dealias_velocity(velocity, span_mps=wavelength_m * prf_hz / 2, track=track),
                       doppler.demodulate(signal, doppler_track, prf_hz=prf_hz))
 
@@ -540,7 +546,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     snr_db = Measured(float(10 * np.log10(snr))) if snr > 0 else withheld("no_signal", "no power above the noise")
     body = body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m, track=track)
     band = doppler_band(s, body.demodulated, prf_hz=prf_hz, wavelength_m=wavelength_m, noise_power=noise_power)
-    body_doppler_hz = float(np.median(body.track_hz)) if body.track_hz is not None else 0.0
+    body_doppler_hz = float(np.mean(body.track_hz)) if body.track_hz is not None else 0.0
     bandwidth, extent = paper_bandwidth(body.demodulated, prf_hz=prf_hz, threshold_db=params.threshold_db,
                                         body_doppler_hz=body_doppler_hz, aliased=band.aliased)
     turn = rotation(body.demodulated, aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
