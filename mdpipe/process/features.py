@@ -351,7 +351,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     chopping_hz, measured_n = None, None
     if comb is not None:
         chopping_hz, measured_n = _comb_blades(micro, np.array(comb.chopping_hz), aliased=aliased, prf_hz=prf_hz,
-                                               noise_power=noise_power, band_hz=band_hz)
+                                               noise_power=noise_power, band_hz=band_hz, n_blades=n_blades)
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
         ratio = timed_hz / centre
@@ -371,7 +371,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
             return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
     elif timed_hz is not None:
-        chopping_hz = np.array([timed_hz])
+        # flash times give the flash rate: 2N flashes a turn for an odd N given, N for an even one
+        odd_given = aliased and n_blades is not None and n_blades % 2 == 1
+        chopping_hz = np.array([timed_hz / 2 if odd_given else timed_hz])
     if chopping_hz is None:
         if slowest_hz > combs.MIN_CHOP_HZ:
             note = (f"rotation not estimable: no periodic blade flashes above {slowest_hz:.3g} Hz (a dwell of "
@@ -400,12 +402,13 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     return Rotation(chopping, status, rates, blades, source)
 
 
-def _comb_blades(micro, spacing_hz, *, aliased, prf_hz, noise_power, band_hz):
+def _comb_blades(micro, spacing_hz, *, aliased, prf_hz, noise_power, band_hz, n_blades=None):
     """Chopping frequencies from comb spacings, and the blade count where the line pattern tells it.
 
     A comb whose every N-th line stands out is a rotor's turn seen through one blade that differs:
     its chopping frequency is N times the spacing. A comb with weaker lines between its lines is the
     chopping comb of such a rotor. Either way N is measured. Folded (aliased) combs tell neither.
+    A pattern of every N-th line is confirmed by the echo repeating each 1/N turn, or by N given.
     """
     if aliased:
         return spacing_hz, None
@@ -417,7 +420,7 @@ def _comb_blades(micro, spacing_hz, *, aliased, prf_hz, noise_power, band_hz):
         r = autocorrelation(micro)
         turn = prf_hz / float(spacing_hz[0])
         at = lambda lag: float(r[max(int(round(lag)) - 2, 0):int(round(lag)) + 3].max())  # noqa: E731
-        if at(turn / pattern) >= TAGGED_REPEAT and at(turn) > at(turn / pattern):
+        if pattern == n_blades or (at(turn / pattern) >= TAGGED_REPEAT and at(turn) > at(turn / pattern)):
             return spacing_hz * pattern, pattern
     return spacing_hz, combs.blade_count_from_sublines(micro, float(spacing_hz[0]), prf_hz=prf_hz,
                                                        noise_power=noise_power, half_width_hz=band_hz)
