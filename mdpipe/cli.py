@@ -407,7 +407,10 @@ def _summary_line(row):
                                     ("blade_length_m", "blade", "cm", 100), ("doppler_bw_hz", "BW", "Hz", 1),
                                     ("wingbeat_freq_hz", "wingbeat", "Hz", 1)):
         if row.get(key) is not None:
-            parts.append(f"{label} {row[key] * scale:.4g} {unit}")
+            status = row.get(f"{key}_status", "ok")
+            caveat = {"assumed_blades": f" (N = {row.get('n_blades')} assumed)",
+                      "assumed_elevation": " (beta = 0 assumed)"}.get(status, "" if status == "ok" else f" ({status})")
+            parts.append(f"{label} {row[key] * scale:.4g} {unit}{caveat}")
     if row.get("body_velocity_mps") is not None:  # to the Doppler resolution 1 / dwell, in m/s
         resolution_mps = row["wavelength_m"] / (2 * row["dwell_s"])
         parts.append(f"v {to_resolution(row['body_velocity_mps'], resolution_mps)} m/s")
