@@ -1,6 +1,7 @@
 """Shared helpers: small radars and scenes, and a reference range FFT for known-answer tests."""
 
 import copy
+import signal
 
 import numpy as np
 import pytest
@@ -45,3 +46,10 @@ def slow_time(path, range_bin, *, channel=0):
 @pytest.fixture
 def tmp_capture(tmp_path):
     return lambda mapping, name="capture.h5": simulate(tmp_path, mapping, name)
+
+
+def as_from_a_terminal():
+    """``preexec_fn`` for a child that must see Ctrl-C as a user's shell delivers it: a runner started in the
+    background (``cmd &``) passes SIGINT on ignored, and Python then never raises KeyboardInterrupt."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import as_from_a_terminal
 from mdpipe.batch import runner
 from mdpipe.report import tables
 
@@ -33,8 +34,8 @@ def folder(tmp_path):
 def start(folder, out, command="batch"):
     extra = ["-j", "2"] if command == "batch" else []
     return subprocess.Popen([*MDPIPE, command, str(folder), "--out", str(out), "--no-figures", *extra],
-                            stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=as_from_a_terminal)
 
 
 def complete_folders(out):

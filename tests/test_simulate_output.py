@@ -13,6 +13,7 @@ import pytest
 import yaml
 from click.testing import CliRunner
 
+from conftest import as_from_a_terminal
 from mdpipe.cli import main
 from mdpipe.report.tables import atomic_write
 
@@ -110,7 +111,8 @@ def test_signal_mid_write_leaves_nothing(tmp_path, signum, code):
     """A 4-channel, 300 000-chirp capture (614 MB, several seconds); the signal comes once the temporary file exists."""
     out = tmp_path / "c.h5"
     proc = subprocess.Popen([MDPIPE, "simulate", "--config", str(config(tmp_path, n_channels=4)), "-o", str(out),
-                             "--chirps", "300000"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                             "--chirps", "300000"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=as_from_a_terminal)
     deadline = time.monotonic() + 60
     while not list(tmp_path.glob(".c.h5.*.partial")) and proc.poll() is None and time.monotonic() < deadline:
         time.sleep(0.01)
