@@ -9,6 +9,7 @@ simulate against a bare h5py write of the same array (benchmarks/bench_simulate.
 """
 
 import argparse
+import shutil
 import statistics
 import subprocess
 import sys
@@ -71,9 +72,7 @@ def main():
                   f"{duration / run:.2f} |")
         full_size(str(work), args.repeats)
     finally:
-        for path in work.glob("*"):
-            path.unlink()
-        work.rmdir()
+        shutil.rmtree(work)  # the captures and the output folders mdpipe process made
 
 
 if __name__ == "__main__":
