@@ -402,7 +402,8 @@ def _summary_line(row):
         return f"{row['file']}: none ({row['notes']})"
     from mdpipe.report.tables import to_resolution
 
-    parts = [f"{row['file']}: {row['class']} at {row['range_m']:.1f} m, SNR {row['snr_db']:.1f} dB"]
+    snr = f"{row['snr_db']:.1f} dB" if row.get("snr_db") is not None else f"n/a ({row.get('snr_db_status')})"
+    parts = [f"{row['file']}: {row['class']} at {row['range_m']:.1f} m, SNR {snr}"]
     for key, label, unit, scale in (("chopping_freq_hz", "chopping", "Hz", 1), ("rotation_rate_hz", "rotor", "rev/s", 1),
                                     ("blade_length_m", "blade", "cm", 100), ("doppler_bw_hz", "BW", "Hz", 1),
                                     ("wingbeat_freq_hz", "wingbeat", "Hz", 1)):
@@ -565,7 +566,6 @@ def evaluate(sweep_path, out_dir, jobs, limit, keep_captures):
     (one row per scene x target: truth, value, status, error, verdict per feature) and OUT/summary.md,
     which is also printed: class confusion, per-feature coverage and errors, confidently wrong values.
     """
-    import time
 
     from mdpipe.evaluate import run, summary, sweep
     from mdpipe.report.tables import atomic_write

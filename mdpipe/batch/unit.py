@@ -36,7 +36,7 @@ class Job:
         Folder to publish into; None publishes nothing (``process --json`` without ``--out``).
     params : ProcessParams
     reader : dict
-        ``frame_counter`` and ``overrides`` for :func:`mdpipe.io.open_capture`.
+        ``frame_counter``, ``overrides`` and ``allow_external`` for :func:`mdpipe.io.open_capture`.
     figures : FigureParams or None
         Draw the per-capture figures with these choices; None: no figures.
     track : bool

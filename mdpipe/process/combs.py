@@ -50,22 +50,6 @@ PARITY_SHARE = 0.5           # odd N: contrast at odd multiples of f_chop below 
 
 
 @dataclass(frozen=True)
-class Comb:
-    """Combs found in a spectrum: one chopping frequency per resolved rotor, strongest first.
-
-    ``contrast``: mean line score at the comb over that half-way (``log(1 + SNR)`` units); ``t``: that
-    contrast in standard errors of the line-by-line differences; ``harmonics``: lines a side scored
-    for the strongest; ``resolution_hz``: bin width of the whole-dwell spectrum.
-    """
-
-    chopping_hz: tuple
-    contrast: tuple
-    t: tuple
-    harmonics: int
-    resolution_hz: float
-
-
-@dataclass(frozen=True)
 class LineSpectrum:
     """Line scores ``log(1 + P / noise)`` per bin of a spectrum in FFT order (zero-padded ``PAD`` times)."""
 
@@ -177,7 +161,8 @@ def _search(lines, low_hz, high_hz, *, half_width_hz, max_points=MAX_GRID_POINTS
 
 
 def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ, max_hz=MAX_CHOP_HZ):
-    """Chopping frequencies of the rotors in a body-free echo ``signal``, or None when no comb stands out.
+    """Chopping frequencies (Hz) of the rotors in a body-free echo ``signal``, strongest first; None when no
+    comb stands out.
 
     Parameters
     ----------
@@ -235,8 +220,7 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
         if best is None or best.t < COMB_T or best.contrast < ROTOR_SHARE * first.contrast:
             break
         found.append(best)
-    return Comb(chopping_hz=tuple(c.spacing_hz for c in found), contrast=tuple(c.contrast for c in found),
-                t=tuple(c.t for c in found), harmonics=first.orders, resolution_hz=lines.resolution_hz)
+    return tuple(c.spacing_hz for c in found)
 
 
 def comb_offset_hz(signal, *, prf_hz, noise_power, half_width_hz):
@@ -254,7 +238,7 @@ def comb_offset_hz(signal, *, prf_hz, noise_power, half_width_hz):
         return None
     lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
     best_contrast, best_offset = -np.inf, None
-    for spacing in (flashes.chopping_hz[0], flashes.chopping_hz[0] / 2):
+    for spacing in (flashes[0], flashes[0] / 2):
         k = np.arange(-min(MAX_FINE_HARMONICS, int(half_width_hz / spacing)),
                       min(MAX_FINE_HARMONICS, int(half_width_hz / spacing)) + 1)
         offsets = np.arange(-spacing / 2, spacing / 2, lines.resolution_hz / 2)

@@ -350,7 +350,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
     chopping_hz, measured_n = None, None
     if comb is not None:
-        chopping_hz, measured_n = _comb_blades(micro, np.array(comb.chopping_hz), aliased=aliased, prf_hz=prf_hz,
+        chopping_hz, measured_n = _comb_blades(micro, np.array(comb), aliased=aliased, prf_hz=prf_hz,
                                                noise_power=noise_power, band_hz=band_hz, n_blades=n_blades)
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
@@ -370,6 +370,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             note = (f"rotation not estimable: the line comb says {centre:.4g} Hz and the echo's "
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
             return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+    elif chopping_hz is not None and aliased:
+        note = ("rotation not estimable: a folded line comb at {:.4g} Hz that the flash times do not confirm "
+                "(folded combs can coincide by chance)").format(float(np.median(chopping_hz)))
+        return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
     elif timed_hz is not None:
         # flash times give the flash rate: 2N flashes a turn for an odd N given, N for an even one
         odd_given = aliased and n_blades is not None and n_blades % 2 == 1
@@ -510,8 +514,11 @@ def wings(beat, halfwidth):
     Below ``MIN_WING_SPREAD_MPS`` it is swaying clutter (a branch, leaves); above ``DRONE_SPREAD_MPS``
     (or aliased) faster than wing tips move.
     """
-    if beat.value is None or halfwidth.value is None:
+    if beat.value is None:
         return beat
+    if halfwidth.value is None:
+        return withheld("not_applicable", f"a micro-Doppler repeating at {beat.value:.3g} Hz, but no band above the "
+                        "noise to tell wings from swaying clutter")
     if halfwidth.status == OK and MIN_WING_SPREAD_MPS <= halfwidth.value <= DRONE_SPREAD_MPS:
         return beat
     return withheld("not_applicable", f"a micro-Doppler repeating at {beat.value:.3g} Hz is no wingbeat: its "
@@ -589,5 +596,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
              if m.note and (m.status != OK or m is body.velocity)]
     notes = list(dict.fromkeys(notes))  # one sentence once (blade length and its tip share theirs)
     notes.extend(display_adjustments(params, shown, prf_hz=prf_hz, dwell_s=dwell_s))
+    # the edges were read about the body line; the figures show the echo as received
+    shown_edges = None if edges is None else tuple(e + body_doppler_hz for e in edges)
     return TargetAnalysis(row=row, spectrum=band.spectrum, spectrogram=shown, paper_extent_hz=extent,
-                          flash_edges_hz=edges, notes=notes)
+                          flash_edges_hz=shown_edges, notes=notes)

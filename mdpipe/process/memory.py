@@ -49,11 +49,12 @@ def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_b
         with their channel products; beside them the range DFT matrix while it is built (40 B per
         sample and bin: complex128 exponential, its windowed copy, float64 real and imaginary parts
         and the float32 result) and the accumulators. Pass 2 reads ``ranging.READ_CHIRPS`` chirps per
-        thread and keeps the slow time (n_chirps x bins, complex64).
+        thread, transforms them at the grid columns the targets' tracks cross, and keeps each target's
+        slow time (bounded here by n_chirps x bins, complex64).
     """
     c, n = n_channels, n_samples
     k, b = gate_bin_counts(params, process)
-    fft_bins = process.zero_pad * params.n_samples // 2 + 1
+    fft_bins = ranging.FINE_STEPS * process.zero_pad * params.n_samples // 2 + 1  # range_bins "all": fine grid
     probe = min(ranging.PROBE_CHIRPS, process.chunk_chirps)  # rows read of each chunk, as gate_statistics does
     if n_chirps * probe / process.chunk_chirps < ranging.MIN_PROBED_CHIRPS:
         probe = process.chunk_chirps

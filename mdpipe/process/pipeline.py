@@ -149,7 +149,8 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         layout = reader.layout.describe()
     for index, (detection, (track, signal, rx_gain_db)) in enumerate(zip(detections, targets)):
         analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
-                                  noise_power=noise, params=process, track=track)
+                                  noise_power=noise, params=process,
+                                  track=None if detection.fixed_bin is not None else track)  # a fixed gate does not move
         range_min_m, range_max_m = float(track.range_m.min()), float(track.range_m.max())
         row = _base_row(path, stats, process, params)
         row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),

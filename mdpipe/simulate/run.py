@@ -11,13 +11,13 @@ from threadpoolctl import threadpool_limits
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import INT16_FULL_SCALE, CaptureWriter
+from mdpipe.process.memory import GIB
 from mdpipe.simulate.targets import module_of, target_echo
 from mdpipe.simulate.noise import noise_streams, standard_normal_f32
 from mdpipe.simulate.synth import CHUNK_CHIRPS, if_factors, plan_targets
 from mdpipe.simulate.truth import expected_features
 
 TILE_ROWS = 64
-GIB = 2**30
 TRACK_BYTES_PER_CHIRP = 16 + 128  # chirp times, and per target its body track (measured: <= 112 B per chirp)
 NOISE_PEAK_SIGMAS = 7.0  # P(|n| > 7 sigma) = 2.6e-12 per sample: ~0.002 clipped samples in 1.3 GB
 POWER_SAMPLES = 20000
