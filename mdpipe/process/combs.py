@@ -160,7 +160,7 @@ def _search(lines, low_hz, high_hz, *, half_width_hz, max_points=MAX_GRID_POINTS
     return best
 
 
-def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ, max_hz=MAX_CHOP_HZ):
+def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ, max_hz=MAX_CHOP_HZ, lines=None):
     """Chopping frequencies (Hz) of the rotors in a body-free echo ``signal``, strongest first; None when no
     comb stands out.
 
@@ -173,6 +173,8 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
     half_width_hz : float
         Half-width of the micro-Doppler band (lines beyond it are not scored); ``prf_hz / 2`` or more
         when the band is aliased: positions are folded.
+    lines : LineSpectrum, optional
+        The whole-dwell :func:`line_spectrum` of ``signal``, when the caller has it already.
 
     1. Coarse search over ``min_hz .. max_hz`` on a Welch spectrum of ``COARSE_SEGMENT_S`` segments
        with up to ``MAX_COARSE_HARMONICS`` lines a side, among combs with ``t >= COMB_T``. The comb's
@@ -207,7 +209,8 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
     guess = float(grid[peaks.max()])
     if fundamental_hz(coarse, guess, half_width_hz=half_width_hz) < MIN_FUNDAMENTAL_HZ:
         return None
-    lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
+    if lines is None:
+        lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
     width = coarse.resolution_hz / MIN_HARMONICS
     first = _search(lines, guess - width, guess + width, half_width_hz=half_width_hz)
     if first is None or first.t < COMB_T:
@@ -269,13 +272,12 @@ def _orders(spacing_hz, half_width_hz, limit):
     return np.arange(1, int(np.clip(np.floor(half_width_hz / spacing_hz), 0, limit)) + 1)
 
 
-def blade_count_from_sublines(signal, chopping_hz, *, prf_hz, noise_power, half_width_hz):
+def blade_count_from_sublines(lines, chopping_hz, *, half_width_hz):
     """N from the lines between the chopping lines (blades of unequal reflectivity), or None.
 
     For each d = MAX_BLADES .. 2 the positions ``(k + j/d) f_chop``, j = 1..d-1, are scored against
     the positions half-way between them; the largest d with every j significant is N.
     """
-    lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
     order = _orders(chopping_hz, half_width_hz, MAX_FINE_HARMONICS)
     if len(order) < MIN_HARMONICS:
         return None
@@ -292,7 +294,7 @@ def blade_count_from_sublines(signal, chopping_hz, *, prf_hz, noise_power, half_
     return None
 
 
-def blade_count_from_line_pattern(signal, spacing_hz, *, prf_hz, noise_power, half_width_hz):
+def blade_count_from_line_pattern(lines, spacing_hz, *, half_width_hz):
     """N when every N-th line of the comb at ``spacing_hz`` stands out (the comb is a turn, one blade differs).
 
     For d = 2 .. MAX_BLADES, the line scores at orders that are multiples of d are compared with the
@@ -300,7 +302,6 @@ def blade_count_from_line_pattern(signal, spacing_hz, *, prf_hz, noise_power, ha
     of ``SUBLINE_Z``, the one with the largest gap is N (multiples of 2N also stand out against the
     rest, but the rest then holds strong lines too). None when the lines carry no such pattern.
     """
-    lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
     order = _orders(spacing_hz, half_width_hz, MAX_FINE_HARMONICS * MAX_BLADES)
     k = np.concatenate([order, -order])
     score = lines.at(k * spacing_hz)

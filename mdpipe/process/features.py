@@ -342,7 +342,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         offset_hz = combs.comb_offset_hz(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz)
         if offset_hz is not None:
             micro = micro * np.exp(-2j * np.pi * offset_hz * np.arange(len(micro)) / prf_hz)
-    comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz)
+    lines = combs.line_spectrum(micro, prf_hz=prf_hz, noise_power=noise_power)  # shared by the comb and N tests
+    comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
+                            lines=lines)
     timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
                                                    prf_hz=prf_hz, noise_power=noise_power, min_hz=slowest_hz)
     if ambiguity is not None and comb is None:
@@ -350,8 +352,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
     chopping_hz, measured_n = None, None
     if comb is not None:
-        chopping_hz, measured_n = _comb_blades(micro, np.array(comb), aliased=aliased, prf_hz=prf_hz,
-                                               noise_power=noise_power, band_hz=band_hz, n_blades=n_blades)
+        chopping_hz, measured_n = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
+                                               band_hz=band_hz, n_blades=n_blades)
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
         ratio = timed_hz / centre
@@ -406,7 +408,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     return Rotation(chopping, status, rates, blades, source)
 
 
-def _comb_blades(micro, spacing_hz, *, aliased, prf_hz, noise_power, band_hz, n_blades=None):
+def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None):
     """Chopping frequencies from comb spacings, and the blade count where the line pattern tells it.
 
     A comb whose every N-th line stands out is a rotor's turn seen through one blade that differs:
@@ -416,8 +418,7 @@ def _comb_blades(micro, spacing_hz, *, aliased, prf_hz, noise_power, band_hz, n_
     """
     if aliased:
         return spacing_hz, None
-    pattern = combs.blade_count_from_line_pattern(micro, float(spacing_hz[0]), prf_hz=prf_hz,
-                                                  noise_power=noise_power, half_width_hz=band_hz)
+    pattern = combs.blade_count_from_line_pattern(lines, float(spacing_hz[0]), half_width_hz=band_hz)
     if pattern:
         # rotors at equal rates whose phases cancel some lines leave a pattern too; a tagged rotor's echo
         # repeats almost exactly each 1/N turn, and exactly each turn
@@ -426,8 +427,7 @@ def _comb_blades(micro, spacing_hz, *, aliased, prf_hz, noise_power, band_hz, n_
         at = lambda lag: float(r[max(int(round(lag)) - 2, 0):int(round(lag)) + 3].max())  # noqa: E731
         if pattern == n_blades or (at(turn / pattern) >= TAGGED_REPEAT and at(turn) > at(turn / pattern)):
             return spacing_hz * pattern, pattern
-    return spacing_hz, combs.blade_count_from_sublines(micro, float(spacing_hz[0]), prf_hz=prf_hz,
-                                                       noise_power=noise_power, half_width_hz=band_hz)
+    return spacing_hz, combs.blade_count_from_sublines(lines, float(spacing_hz[0]), half_width_hz=band_hz)
 
 
 def _blade_count(measured, parity, *, n_blades):
