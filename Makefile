@@ -57,9 +57,11 @@ bench-sim: $(MDPIPE)
 bench-scale: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_scale.py --workdir $(BENCH_DIR)
 
-# mdpipe batch against one `mdpipe process` per capture two at a time, on the bundled samples (~1 min).
+# mdpipe batch against one `mdpipe process` per capture two at a time, on the bundled samples, that way run
+# with this mdpipe and with the mdpipe of the last commit before `mdpipe batch` (the former make rule) (~2 min).
+BATCH_BASELINE ?= 4eec045^
 bench-batch: $(MDPIPE)
-	$(BIN)/python benchmarks/bench_batch.py
+	$(BIN)/python benchmarks/bench_batch.py --repeats 5 --baseline-commit '$(BATCH_BASELINE)'
 
 # The paper's Tables IV and V from simulations of every Table I and II configuration (~30 s).
 paper: $(MDPIPE)

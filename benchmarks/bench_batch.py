@@ -5,19 +5,22 @@ Both end with the folder's features.csv and summary.png, both with and without t
 Wall time, median of --repeats, the two ways alternating so that both see the same load. Then the cost of
 the manifest's content hash (SHA-256, streamed) per GB.
 
-    python benchmarks/bench_batch.py [--inputs data_samples] [--baseline-src DIR]
+    python benchmarks/bench_batch.py [--inputs data_samples] [--baseline-commit REV]
 
-``--baseline-src`` runs the per-capture way with another checkout's mdpipe (e.g. `git archive` of an older
-commit unpacked in DIR); by default both ways use this one.
+The per-capture way runs with this checkout's mdpipe and, with ``--baseline-commit``, once more with the
+mdpipe of commit REV (its ``mdpipe/`` unpacked by ``git archive`` into a temporary folder; the
+interpreter runs with -P, so the checkout's own folder does not shadow it).
 """
 
 import argparse
+import io
 import hashlib
 import os
 import shutil
 import statistics
 import subprocess
 import sys
+import tarfile
 import tempfile
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -29,7 +32,7 @@ MAIN = "import sys; from mdpipe.cli import main; sys.argv[0] = 'mdpipe'; main()"
 
 def mdpipe(args, src=None):
     env = {**os.environ, "PYTHONPATH": str(src)} if src else None
-    return subprocess.run([sys.executable, "-c", MAIN, *map(str, args)], env=env, stdout=subprocess.DEVNULL,
+    return subprocess.run([sys.executable, "-P", "-c", MAIN, *map(str, args)], env=env, stdout=subprocess.DEVNULL,
                           stderr=subprocess.DEVNULL, check=False)
 
 
@@ -44,6 +47,28 @@ def per_capture(captures, out, figures, src):
 
 def batch(inputs, out, figures):
     mdpipe(["batch", inputs, "--out", out, "-j", "2", *([] if figures else ["--no-figures"])])
+
+
+def unpack_mdpipe(commit, into):
+    """``mdpipe/`` of ``commit`` of this repository, unpacked in ``into``; returns ``into``."""
+    archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "mdpipe"], capture_output=True, check=True)
+    with tarfile.open(fileobj=io.BytesIO(archive.stdout)) as tar:
+        tar.extractall(into, filter="data")
+    return Path(into)
+
+
+def compare(captures, inputs, work, repeats, src, label):
+    """Print one table row per figures setting: the per-capture way (mdpipe of ``src``) against the batch."""
+    for figures in (True, False):
+        old, new = [], []
+        for i in range(repeats):
+            for way, times in ((lambda o: per_capture(captures, o, figures, src), old),
+                               (lambda o: batch(inputs, o, figures), new)):
+                out = Path(work) / f"out{i}"
+                times.append(timed(lambda: way(out)))
+                shutil.rmtree(out)
+        a, b = statistics.median(old), statistics.median(new)
+        print(f"| {label} | {'yes' if figures else 'no'} | {a:.2f} s | {b:.2f} s | {a / b:.2f}x |")
 
 
 def timed(run):
@@ -73,24 +98,20 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--inputs", type=Path, default=ROOT / "data_samples")
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--baseline-src", type=Path, help="checkout whose mdpipe runs the per-capture way")
+    parser.add_argument("--baseline-commit", metavar="REV",
+                        help="also time the per-capture way with the mdpipe of this commit")
     args = parser.parse_args()
     captures = sorted(args.inputs.rglob("*.h5"))
     print(f"{len(captures)} captures in {args.inputs}, {sum(c.stat().st_size for c in captures) / 1e6:.1f} MB; "
           f"{os.cpu_count()} CPUs; median of {args.repeats}\n")
-    print("| figures | per-capture `mdpipe process`, 2 at a time | `mdpipe batch -j 2` | speed-up |")
-    print("|---|---|---|---|")
+    print("| per-capture way run with | figures | per-capture `mdpipe process`, 2 at a time | `mdpipe batch -j 2` "
+          "| speed-up |")
+    print("|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as work:
-        for figures in (True, False):
-            old, new = [], []
-            for i in range(args.repeats):
-                for way, times in ((lambda o: per_capture(captures, o, figures, args.baseline_src), old),
-                                   (lambda o: batch(args.inputs, o, figures), new)):
-                    out = Path(work) / f"out{i}"
-                    times.append(timed(lambda: way(out)))
-                    shutil.rmtree(out)
-            a, b = statistics.median(old), statistics.median(new)
-            print(f"| {'yes' if figures else 'no'} | {a:.2f} s | {b:.2f} s | {a / b:.2f}x |")
+        compare(captures, args.inputs, work, args.repeats, None, "this mdpipe")
+        if args.baseline_commit:
+            src = unpack_mdpipe(args.baseline_commit, Path(work) / "baseline")
+            compare(captures, args.inputs, work, args.repeats, src, f"mdpipe of {args.baseline_commit}")
         print(f"\nmanifest content hash (SHA-256, 1 MiB blocks, page cache warm): "
               f"{hash_cost_s_per_gb(work):.2f} s per GB")
 

@@ -449,6 +449,22 @@ class Progress:
         self.stream.flush()
 
 
+def _import_in_background(modules):
+    """Import ``modules`` (what the folder's summary needs) in a thread while the captures are processed: this
+    process otherwise waits idle, and would pay the imports at the end."""
+    import importlib
+    import threading
+
+    def load():
+        for name in modules:
+            try:
+                importlib.import_module(name)
+            except Exception:  # noqa: BLE001 - the summary's own import reports it
+                return
+
+    threading.Thread(target=load, daemon=True).start()
+
+
 def _gather(folder, *, figures):
     """Write FOLDER/features.csv (and summary.png) from its captures' tables; print it; return the failures."""
     from collections import Counter
@@ -493,6 +509,8 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
     if scheduler is not None and scheduler != "local" and "://" not in scheduler:
         raise UsageError(f"--scheduler {scheduler!r}: give 'local' or an address such as tcp://HOST:8786")
     jobs = _jobs(inputs, out_dir, options, figures=not no_figures)
+    if not no_figures:
+        _import_in_background(["mdpipe.report.plots", "pandas"])
     progress = Progress(len(jobs), sys.stderr) if sys.stderr.isatty() else None
     counts = {"done": 0, "failed": 0, "up to date": 0}
 

@@ -298,3 +298,17 @@ def test_leftovers_of_a_killed_run_are_removed_and_nothing_else(tmp_path):
         path.write_text("")
     tables.remove_partials([out / "x", out / "features.csv"])
     assert [p.exists() for p in keep] == [True, True, True] and [p.exists() for p in gone] == [False, False, False]
+
+
+def test_the_pool_starts_the_largest_captures_first(tmp_path):
+    """Jobs go to the pool by input size, largest first, ties in the order given; a vanished input counts as
+    empty (its job fails at once)."""
+    from mdpipe.batch import runner
+    from mdpipe.params import ProcessParams
+
+    sizes = {"a": 10, "b": 3000, "c": 10, "d": 700}
+    for name, size in sizes.items():
+        (tmp_path / f"{name}.h5").write_bytes(b"\0" * size)
+    names = ["a", "gone", "b", "c", "d"]
+    jobs = [unit.Job(str(tmp_path / f"{n}.h5"), n, None, ProcessParams(), {}, None) for n in names]
+    assert [job.key for job in runner._largest_first(jobs)] == ["b", "d", "a", "c", "gone"]

@@ -114,8 +114,19 @@ def _pool_round(jobs, workers):
     return lost
 
 
+def _largest_first(jobs):
+    """``jobs`` by input size, largest first (stable): the longest captures start first, so that no worker is
+    left with a long one at the end while the others idle."""
+    def size(job):
+        try:
+            return os.stat(job.capture).st_size
+        except OSError:  # gone or unreadable: its job fails quickly
+            return 0
+    return sorted(jobs, key=size, reverse=True)
+
+
 def _pool(jobs, workers):
-    queue, alone = list(jobs), False
+    queue, alone = _largest_first(jobs), False
     while queue:
         round_jobs, queue = (queue[:1], queue[1:]) if alone else (queue, [])
         lost = yield from _pool_round(round_jobs, 1 if alone else min(workers, len(round_jobs)))
