@@ -210,12 +210,14 @@ def _speed_mps(doppler_hz_, wavelength_m):
 
 @dataclass(frozen=True)
 class DopplerBand:
-    """The dwell spectrum (for the figures), the micro-Doppler half-width about its centre, aliasing and why."""
+    """The dwell spectrum (for the figures), the micro-Doppler half-width about its centre (with the single lines
+    beyond the dense band; ``dense_half_width_hz`` without them), aliasing and why."""
 
     spectrum: doppler.PowerSpectrum
     half_width_hz: float
     aliased: bool
     halfwidth: Measured
+    dense_half_width_hz: float = 0.0
 
 
 def doppler_band(signal, demodulated, *, prf_hz, wavelength_m, noise_power):
@@ -239,11 +241,12 @@ def doppler_band(signal, demodulated, *, prf_hz, wavelength_m, noise_power):
     if reason is not None:
         return DopplerBand(plain, prf_hz / 2, True,
                            Measured(_speed_mps(prf_hz / 2, wavelength_m), "aliased",
-                                    f"micro-Doppler half-width at least the span's: aliased ({reason})"))
+                                    f"micro-Doppler half-width at least the span's: aliased ({reason})"), prf_hz / 2)
     if not np.isfinite(band.low_hz):
         return DopplerBand(plain, 0.0, False, withheld("no_signal", "no micro-Doppler band 10 dB above the noise"))
     half_width_hz = (band.high_hz - band.low_hz) / 2
-    return DopplerBand(plain, half_width_hz, False, Measured(_speed_mps(half_width_hz, wavelength_m)))
+    dense_hz = (band.dense_high_hz - band.dense_low_hz) / 2 if np.isfinite(band.dense_low_hz) else 0.0
+    return DopplerBand(plain, half_width_hz, False, Measured(_speed_mps(half_width_hz, wavelength_m)), dense_hz)
 
 
 def paper_bandwidth(demodulated, *, prf_hz, threshold_db, body_doppler_hz, aliased):
@@ -318,7 +321,7 @@ def _whole_ratio(ratio):
 
 
 def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, halfwidth_mps,
-             body_found=True):
+             body_found=True, dense_half_width_hz=None):
     """Rotation of the rotors from their line combs and from the echo's period (or flash times when aliased).
 
     * The combs (:mod:`mdpipe.process.combs`) give each resolvable rotor's chopping frequency ``N f_i``.
@@ -329,14 +332,18 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     nothing is reported. A comb narrower in Doppler than any blade turning that fast could make
     (``r cos(beta) < MIN_BLADE_REACH_M``) is not a rotor.
     Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines,
-    odd-N flash doubling), else assumed. Without a body line (``body_found`` False) the comb is first
-    centred on the Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`).
+    odd-N flash doubling), else assumed; those tests read the lines within ``dense_half_width_hz`` (the
+    band's dense part; default ``half_width_hz``): the single lines beyond it, searched for combs, carry the
+    rotors' mutual beats as much as a blade pattern (read there, N came out 3 and 5 for 2-blade rotors).
+    Without a body line (``body_found`` False) the comb is first centred on the Doppler it lies about
+    (:func:`mdpipe.process.combs.comb_offset_hz`).
     """
     slowest_hz = max(combs.MIN_CHOP_HZ, 2.0 / dwell_s)  # two chopping periods in the dwell
     if slowest_hz >= combs.MAX_CHOP_HZ / 2:
         note = f"rotation not estimable: dwell {dwell_s:.3g} s is too short for two chopping periods of any rotor"
         return Rotation(withheld("dwell_short", note), withheld("dwell_short", note))
     band_hz = prf_hz / 2 if aliased else half_width_hz
+    count_band_hz = band_hz if aliased or dense_half_width_hz is None else min(dense_half_width_hz, band_hz)
     micro = demodulated - np.mean(demodulated)  # the body, demodulated to 0 Hz; combs score lines from f_chop up
     if not body_found and not aliased:  # rotating parts alone: their comb lies about the body's Doppler
         offset_hz = combs.comb_offset_hz(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz)
@@ -353,7 +360,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     chopping_hz, measured_n = None, None
     if comb is not None:
         chopping_hz, measured_n = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
-                                               band_hz=band_hz, n_blades=n_blades)
+                                               band_hz=count_band_hz, n_blades=n_blades)
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
         ratio = timed_hz / centre
@@ -393,7 +400,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                 f"{halfwidth_mps:.2g} m/s wide is no rotor (blades turning that fast reach >= {fastest_mps:.2g} m/s)")
         return Rotation(withheld("not_rotor", note), withheld("not_rotor", note))
     chopping = Measured(float(np.median(chopping_hz)))
-    parity = None if aliased else combs.odd_blades(micro, float(chopping_hz[0]), prf_hz=prf_hz, half_width_hz=band_hz)
+    parity = None if aliased else combs.odd_blades(micro, float(chopping_hz[0]), prf_hz=prf_hz,
+                                                   half_width_hz=count_band_hz)
     blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades)
     if conflict:
         return Rotation(chopping, withheld("blade_conflict", f"rotation not estimable: {conflict}"),
@@ -561,7 +569,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                         body_doppler_hz=body_doppler_hz, aliased=band.aliased)
     turn = rotation(body.demodulated, aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                     noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s,
-                    halfwidth_mps=band.halfwidth.value, body_found=body.track_hz is not None)
+                    halfwidth_mps=band.halfwidth.value, body_found=body.track_hz is not None,
+                    dense_half_width_hz=band.dense_half_width_hz)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,

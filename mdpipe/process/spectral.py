@@ -10,7 +10,8 @@ import numpy as np
 from mdpipe.process.doppler import noise_level_per_bin, spectrogram
 from mdpipe.process.filters import moving_average
 
-OCCUPIED_DB = 10.0        # micro-Doppler "present" this far above the noise level
+OCCUPIED_DB = 10.0        # micro-Doppler "present" this far above the noise level (smoothed) ...
+LINE_DB = 15.0            # ... or in a single bin this far above it (noise: once in 5e13 bins)
 EDGE_FRACTION = 0.02      # within 2 % of the span's ends counts as touching them
 FILLED_FRACTION = 0.9     # a band over 90 % of the span has filled it
 HALF_AMPLITUDE_DB = 20 * np.log10(2)  # 6.02 dB: half amplitude, the edge of a rect spectrum
@@ -20,17 +21,23 @@ EDGE_PLATEAU_DB = 15.0    # a flash whose edges are read stands this far above t
 
 @dataclass(frozen=True)
 class Band:
-    """Occupied Doppler band of a spectrum: extent (Hz), fraction of the span, aliasing verdict and why."""
+    """Occupied Doppler band of a spectrum: extent (Hz) with its single lines, fraction of the span, aliasing
+    verdict and why, and the extent of the dense part (the smoothed spectrum over its threshold; NaN if none)."""
 
     low_hz: float
     high_hz: float
     fraction: float
     aliased: bool
     reason: str
+    dense_low_hz: float = np.nan
+    dense_high_hz: float = np.nan
 
 
 def occupied_band(spectrum, noise_level, *, smooth_hz):
-    """Where the spectrum (smoothed over ``smooth_hz``) stands ``OCCUPIED_DB`` above ``noise_level``.
+    """Where the spectrum (smoothed over ``smooth_hz``) stands ``OCCUPIED_DB`` above ``noise_level``, or
+    a single bin of it ``LINE_DB`` above: the sparse line comb of rotors whose lines stand well out of
+    the noise but whose average over the smoothing width does not (lines 200 Hz apart, 18 dB over the
+    noise, average 6 dB over 70 Hz).
 
     Aliased when the band fills the span or reaches both of its ends: the micro-Doppler then wraps
     and its true extent is unknown.
@@ -39,18 +46,21 @@ def occupied_band(spectrum, noise_level, *, smooth_hz):
     width = max(1, int(round(smooth_hz / spectrum.resolution_hz)))
     envelope = moving_average(power, width, mode="wrap")
     occupied = envelope > noise_level * 10 ** (OCCUPIED_DB / 10)
-    if not occupied.any():
+    occupied_or_lines = occupied | (power > noise_level * 10 ** (LINE_DB / 10))
+    if not occupied_or_lines.any():
         return Band(np.nan, np.nan, 0.0, False, "no Doppler band above the noise")
     fraction = float(occupied.mean())
     edge = max(1, int(EDGE_FRACTION * len(f)))
-    touches = occupied[:edge].any() and occupied[-edge:].any()
-    index = np.flatnonzero(occupied)
+    touches = occupied_or_lines[:edge].any() and occupied_or_lines[-edge:].any()
+    index = np.flatnonzero(occupied_or_lines)
     aliased = fraction >= FILLED_FRACTION or touches
     reason = ""
     if aliased:
         reason = (f"micro-Doppler fills {fraction:.0%} of the span 1/Tp = {f[-1] - f[0] + spectrum.resolution_hz:.0f} Hz"
                   if fraction >= FILLED_FRACTION else "micro-Doppler reaches both ends of the span 1/Tp")
-    return Band(float(f[index[0]]), float(f[index[-1]]), fraction, bool(aliased), reason)
+    dense = np.flatnonzero(occupied)
+    dense_extent = (float(f[dense[0]]), float(f[dense[-1]])) if len(dense) else (np.nan, np.nan)
+    return Band(float(f[index[0]]), float(f[index[-1]]), fraction, bool(aliased), reason, *dense_extent)
 
 
 def paper_extent(spectrum, *, threshold_db):
