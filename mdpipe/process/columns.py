@@ -47,8 +47,8 @@ COLUMNS = (
     Column("snr_db", "dB", "SNR per chirp in the target's bin after RX combining: (moving power - noise) / noise, the "
            "noise being the median moving power over the gate", f"{NO_TARGET}; see `snr_db_status`"),
     Column("micro_doppler_halfwidth_mps", "m/s", "half-width of the band 10 dB above the noise (smoothed) or to its "
-           "outermost line 15 dB above it, about its centre (the body line when one stands out), as a speed (lambda f / 2); when aliased half the unambiguous span, a "
-           "lower bound (status `aliased`)", STATUS),
+           "outermost line 15 dB above it, about its centre (the body line when one stands out), as a speed "
+           "(lambda f / 2); when aliased half the unambiguous span, a lower bound (status `aliased`)", STATUS),
     Column("doppler_bw_hz", "Hz", "the paper's Doppler bandwidth: extent of the power spectrum above its mean by "
            "`threshold_db`, on 0.25 s segments of the body-demodulated echo (median of the segments' edges)", STATUS),
     Column("doppler_bw_mps", "m/s", "`doppler_bw_hz` as a velocity spread, times lambda / 2", STATUS),
