@@ -32,6 +32,15 @@ def test_running_min_and_median(x, size):
     np.testing.assert_array_equal(filters.running_min(x, size), ndimage.minimum_filter1d(x, size, mode="nearest"))
     np.testing.assert_array_equal(filters.running_median(x, size), ndimage.median_filter(x, size=size, mode="nearest"))
 
+def test_local_maxima_against_argrelextrema():
+    """Strict maxima are scipy's; a plateau counts once at its left end; NaN is never a maximum."""
+    from scipy.signal import argrelextrema
+
+    x = np.random.default_rng(5).normal(size=500)
+    np.testing.assert_array_equal(filters.local_maxima(x), argrelextrema(x, np.greater)[0])
+    np.testing.assert_array_equal(filters.local_maxima(np.array([0, 2, 2, 1, np.nan, 3, 0.0])), [1, 5])
+
+
 
 @pytest.mark.parametrize("n_window, hop", [(64, 16), (24, 3), (33, 7), (128, 1)])
 def test_spectrogram_is_short_time_fft(n_window, hop):

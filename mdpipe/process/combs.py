@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mdpipe.process.doppler import noise_level_per_bin, periodic_hann
+from mdpipe.process.filters import local_maxima
 
 MIN_CHOP_HZ = 20.0           # the lowest comb spacing searched
 MIN_FUNDAMENTAL_HZ = 20.0    # a rotor turns faster than 20 rev/s; wings beat up to 20 Hz
@@ -126,11 +127,6 @@ def comb_statistics(lines, spacing_hz, *, half_width_hz, limit, offset=0.5):
     return mean, t, n_orders
 
 
-def _local_maxima(values):
-    v = np.where(np.isfinite(values), values, -np.inf)
-    return np.flatnonzero((v[1:-1] > v[:-2]) & (v[1:-1] >= v[2:])) + 1
-
-
 @dataclass(frozen=True)
 class _Candidate:
     spacing_hz: float
@@ -202,7 +198,7 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
     total = np.where(t >= COMB_T, values * np.floor(half_width_hz / grid), np.nan)
     if not np.any(np.isfinite(total)):
         return None
-    peaks = _local_maxima(total)
+    peaks = local_maxima(total)
     peaks = peaks[total[peaks] >= MULTIPLE_SHARE * np.nanmax(total)]
     if len(peaks) == 0:
         return None

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mdpipe.process.filters import running_min
+from mdpipe.process.filters import local_maxima, running_min
 
 FUNDAMENTAL_SHARE = 0.8
 REPEAT_SHARE = 0.5
@@ -88,7 +88,7 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     baseline = running_min(r, 2 * lo + 1)
     prominence = r - baseline
     seg = r[lo:hi]
-    peaks = np.flatnonzero((seg[1:-1] > seg[:-2]) & (seg[1:-1] >= seg[2:])) + 1 + lo
+    peaks = local_maxima(seg) + lo
     if len(peaks) == 0:
         return None
     heights = prominence[peaks]
