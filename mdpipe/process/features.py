@@ -321,7 +321,7 @@ def _whole_ratio(ratio):
 
 
 def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, halfwidth_mps,
-             body_found=True, dense_half_width_hz=None):
+             dense_half_width_hz, body_found=True):
     """Rotation of the rotors from their line combs and from the echo's period (or flash times when aliased).
 
     * The combs (:mod:`mdpipe.process.combs`) give each resolvable rotor's chopping frequency ``N f_i``.
@@ -333,7 +333,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     (``r cos(beta) < MIN_BLADE_REACH_M``) is not a rotor.
     Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines,
     odd-N flash doubling), else assumed; those tests read the lines within ``dense_half_width_hz`` (the
-    band's dense part; default ``half_width_hz``): the single lines beyond it, searched for combs, carry the
+    band's dense part): the single lines beyond it, searched for combs, carry the
     rotors' mutual beats as much as a blade pattern (read there, N came out 3 and 5 for 2-blade rotors).
     Without a body line (``body_found`` False) the comb is first centred on the Doppler it lies about
     (:func:`mdpipe.process.combs.comb_offset_hz`).
@@ -343,7 +343,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         note = f"rotation not estimable: dwell {dwell_s:.3g} s is too short for two chopping periods of any rotor"
         return Rotation(withheld("dwell_short", note), withheld("dwell_short", note))
     band_hz = prf_hz / 2 if aliased else half_width_hz
-    count_band_hz = band_hz if aliased or dense_half_width_hz is None else min(dense_half_width_hz, band_hz)
+    count_band_hz = band_hz if aliased else min(dense_half_width_hz, band_hz)
     micro = demodulated - np.mean(demodulated)  # the body, demodulated to 0 Hz; combs score lines from f_chop up
     if not body_found and not aliased:  # rotating parts alone: their comb lies about the body's Doppler
         offset_hz = combs.comb_offset_hz(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz)
@@ -409,11 +409,11 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     rates = tuple(sorted(float(rotor.rotation_rate_from_chopping_hz(c, n_blades=blades)) for c in chopping_hz))
     rate = float(np.median(rates))
     if source == "assumed":
-        status = Measured(rate, "assumed_blades", f"rotation rate assumes N = {blades} blades (the echo does not tell "
-                          "the blade count; give --blades)")
+        measured = Measured(rate, "assumed_blades", f"rotation rate assumes N = {blades} blades (the echo does not "
+                            "tell the blade count; give --blades)")
     else:
-        status = Measured(rate)
-    return Rotation(chopping, status, rates, blades, source)
+        measured = Measured(rate)
+    return Rotation(chopping, measured, rates, blades, source)
 
 
 def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None):
