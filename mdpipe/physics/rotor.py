@@ -165,9 +165,6 @@ def flash_period_s(rotation_rate_hz, *, n_blades):
     return 1.0 / (flashes_per_revolution(n_blades) * np.abs(rotation_rate_hz))
 
 
-def rotation_rate_from_flash_period_hz(flash_period_s_, *, n_blades):
-    """Inverse of :func:`flash_period_s`: revolutions per second."""
-    return 1.0 / (flashes_per_revolution(n_blades) * np.asarray(flash_period_s_, dtype=np.float64))
 
 
 def tip_doppler_hz(rotation_rate_hz, *, blade_length_m, wavelength_m, elevation_deg=0.0):
@@ -251,4 +248,3 @@ def rotor_line_weights(harmonics, *, blade_gains, blade_length_m, wavelength_m, 
     gamma = 4.0 * np.pi * rho_m * np.cos(np.deg2rad(elevation_deg)) / wavelength_m
     integral = (special.jv(m[..., None], gamma) * reflectivity).sum(axis=-1) * span_m / n
     return integral * np.exp(1j * m * (phase0_rad - np.pi / 2)) * blade_gain_factor(m, blade_gains)
-

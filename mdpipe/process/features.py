@@ -24,7 +24,6 @@ BODY_FRAME_S = 0.032
 BODY_STEADY_SHARE = 0.5      # frames whose strongest line lies on the smoothed body track
 MAX_SPEED_MPS = 25.0         # birds and small drones fly slower: a faster alias of the body Doppler is not taken
 BODY_TRACK_FRAMES = 9        # running median of the body track (rotor lines win single frames)
-MIN_REV_PER_S, MAX_REV_PER_S = 10.0, 500.0
 MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
 FLASHES_PER_WINDOW = 1.5     # flash main lobes the edge window must hold: Gamma >= 24 for N = 2 (config 4: 26.7)
 MIN_PERIODICITY = 0.2        # wingbeat autocorrelation prominence needed

@@ -15,11 +15,9 @@ from matplotlib.figure import Figure
 
 from mdpipe.params import FigureParams
 from mdpipe.physics.radar import doppler_hz, range_rate_from_doppler_mps
-from mdpipe.physics.rotor import flashes_per_revolution
-from mdpipe.process import selection, spectral
+from mdpipe.process import combs, selection, spectral
 from mdpipe.process.classify import DRONE_SPREAD_MPS
 from mdpipe.process.doppler import noise_level_per_bin
-from mdpipe.process.features import MAX_REV_PER_S, MIN_REV_PER_S
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ
 from mdpipe.report.tables import atomic_write
 
@@ -337,12 +335,12 @@ def _label(row):
     return f"{_name(row['file']).removesuffix('.h5')} #{int(row['target'])}{aliased}"
 
 
-def summary_figure(features, path, *, n_blades=2):
+def summary_figure(features, path):
     """Every target of a folder: micro-Doppler half-width (m/s) against its periodicity (Hz), with the class regions.
 
     The regions are those of :mod:`mdpipe.process.classify`: drone above ``DRONE_SPREAD_MPS`` or with
-    blade flashes (chopping frequencies searched from ``MIN_REV_PER_S`` to ``MAX_REV_PER_S`` rev/s
-    times the flashes per revolution of ``n_blades``); bird with a wingbeat (searched from
+    a blade line comb (chopping frequencies searched from ``combs.MIN_CHOP_HZ`` to ``combs.MAX_CHOP_HZ``,
+    whatever the blade count); bird with a wingbeat (searched from
     ``MIN_WINGBEAT_HZ`` to ``MAX_WINGBEAT_HZ``) below it. Rows without a periodicity sit in a strip
     of their own at their half-width; rows without a target are listed by file.
     """
@@ -352,13 +350,12 @@ def summary_figure(features, path, *, n_blades=2):
     key = _key_axes(fig)
     rate = features["chopping_freq_hz"].fillna(features["wingbeat_freq_hz"])
     width = features["micro_doppler_halfwidth_mps"]
-    flashes = flashes_per_revolution(n_blades)
-    chop = (flashes * MIN_REV_PER_S, flashes * MAX_REV_PER_S)
+    chop = (combs.MIN_CHOP_HZ, combs.MAX_CHOP_HZ)
     x_lim = (min(0.1, rate.min() / 2 if rate.notna().any() else 0.1), max(3000.0, rate.max() * 2 if rate.notna().any() else 0))
     y_lim = (min(0.05, width.min() / 2 if width.notna().any() else 0.05), max(200.0, width.max() * 2 if width.notna().any() else 0))
     ax.axhspan(DRONE_SPREAD_MPS, y_lim[1], color="C0", alpha=0.08, lw=0, label=f"drone: half-width > {DRONE_SPREAD_MPS:g} m/s")
     ax.fill_between(chop, y_lim[0], DRONE_SPREAD_MPS, color="C0", alpha=0.16, lw=0,
-                    label=f"drone: blade flashes, chopping {chop[0]:g}-{chop[1]:g} Hz ({n_blades} blades)")
+                    label=f"drone: blade line comb, chopping {chop[0]:g}-{chop[1]:g} Hz")
     ax.fill_between((MIN_WINGBEAT_HZ, MAX_WINGBEAT_HZ), y_lim[0], DRONE_SPREAD_MPS, color="C2", alpha=0.16, lw=0,
                     label=f"bird: wingbeat {MIN_WINGBEAT_HZ:g}-{MAX_WINGBEAT_HZ:g} Hz, half-width <= {DRONE_SPREAD_MPS:g} m/s")
     ax.axhline(DRONE_SPREAD_MPS, color="k", ls="--", lw=1, label=f"half-width threshold {DRONE_SPREAD_MPS:g} m/s")
