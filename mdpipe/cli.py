@@ -4,7 +4,6 @@ Exit codes, the same in every command: 0 all good, 1 a usage error (a bad option
 2 a capture (or config) failed, 130 interrupted (Ctrl-C; 143 for SIGTERM).
 """
 
-import contextlib
 import json
 import os
 import signal
@@ -100,19 +99,6 @@ class Group(click.Group):
                 signal.signal(signal.SIGTERM, previous)
 
 
-@contextlib.contextmanager
-def terminate_as_exit():
-    """Inside, SIGTERM unwinds like Ctrl-C (``SystemExit(143)``), so temporary files are removed on the way out."""
-    def handler(signum, frame):
-        raise SystemExit(128 + signum)
-
-    previous = signal.signal(signal.SIGTERM, handler)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
-
-
 def attribute_overrides(func):
     """Options that supply or replace a capture's chirp attributes (``--tp 64e-6`` ...)."""
     for name, (_field, meaning, _example) in reversed(ATTRIBUTES.items()):
@@ -193,13 +179,12 @@ def simulate(config_path, out_path, seed, chirps, channels, snr_db, force, max_m
     options = dict(overwrite=force, max_memory_gb=max_memory_gb)
     check_output(scene, out_path, **options)  # before the progress bar shows
     try:
-        with terminate_as_exit():
-            if total >= PROGRESS_MIN_SAMPLES:
-                with click.progressbar(length=radar.n_chirps, label=f"simulating {out_path.name}",
-                                       file=sys.stderr) as bar:
-                    truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text, progress=bar.update, **options)
-            else:
-                truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text, **options)
+        if total >= PROGRESS_MIN_SAMPLES:
+            with click.progressbar(length=radar.n_chirps, label=f"simulating {out_path.name}",
+                                   file=sys.stderr) as bar:
+                truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text, progress=bar.update, **options)
+        else:
+            truth = simulate_to_file(scene, out_path, scene_yaml=yaml_text, **options)
     except FileExistsError:
         raise InputError(f"{out_path}: appeared while simulating; pass --force to replace it") from None
     except OSError as exc:
@@ -453,7 +438,6 @@ def _import_in_background(modules):
     """Import ``modules`` (what the folder's summary needs) in a thread while the captures are processed: this
     process otherwise waits idle, and would pay the imports at the end."""
     import importlib
-    import threading
 
     def load():
         for name in modules:

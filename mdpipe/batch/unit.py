@@ -7,7 +7,6 @@ error (its traceback kept for the error file and ``--debug``), so the run goes o
 capture's published folder as it was.
 """
 
-import time
 import traceback
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -82,7 +81,6 @@ class Outcome:
     traceback: Optional[str] = None
     rows: list = field(default_factory=list)
     record: Optional[dict] = None
-    seconds: float = 0.0
 
 
 def _write_outputs(result, job, folder):
@@ -111,11 +109,10 @@ def one_line(capture, exc, *, writing=False):
     return " ".join(text.split())
 
 
-def failure(job, message, trace=None, *, keep_trace=False, identity=None, started=None):
+def failure(job, message, trace=None, *, keep_trace=False, identity=None):
     """The outcome of a failed capture: its stale outputs replaced by its error file (with ``trace`` when
     ``keep_trace``), or removed when even that cannot be written (the message then says so, with the cause)."""
-    outcome = Outcome(job.capture, job.key, FAILED, True, message, trace,
-                      seconds=time.perf_counter() - started if started else 0.0)
+    outcome = Outcome(job.capture, job.key, FAILED, True, message, trace)
     if job.out_dir is None:
         return outcome
     error_file = job.folder / (Path(job.capture).stem + tables.ERROR_SUFFIX)
@@ -138,7 +135,6 @@ def failure(job, message, trace=None, *, keep_trace=False, identity=None, starte
 
 def run(job):
     """Read, analyse and publish ``job``'s capture; returns an :class:`Outcome` and never raises an Exception."""
-    started = time.perf_counter()
     identity = None
     try:
         if job.track:
@@ -151,7 +147,7 @@ def run(job):
             row["file"] = job.given or job.capture
     except Exception as exc:
         return failure(job, one_line(job.capture, exc), _trace(exc),
-                       keep_trace=not isinstance(exc, (MdpipeError, OSError)), identity=identity, started=started)
+                       keep_trace=not isinstance(exc, (MdpipeError, OSError)), identity=identity)
     outcome = Outcome(job.capture, job.key, DONE, False, rows=result.rows)
     if job.out_dir is not None:
         try:
@@ -159,10 +155,9 @@ def run(job):
         except Exception as exc:  # a full disk (OSError), or a figure that cannot be drawn (a bug: keep the trace)
             writing = isinstance(exc, OSError)
             return failure(job, one_line(job.capture, exc, writing=writing), _trace(exc), keep_trace=not writing,
-                           identity=identity, started=started)
+                           identity=identity)
         if identity is not None:
             outcome.record = {**identity, "status": "ok", "outputs": names}
-    outcome.seconds = time.perf_counter() - started
     return outcome
 
 
