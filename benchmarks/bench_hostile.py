@@ -107,10 +107,9 @@ def plan_table(args, mdpipe, tmp):
         folder.mkdir()
         path = str(build(folder))
         with open_capture(path) as reader:
-            process = ProcessParams(zero_pad=int(options[1]) if options else 1)
-            plan = memory.plan_bytes(n_chirps=reader.n_chirps, n_channels=reader.params.n_channels,
-                                     n_samples=reader.params.n_samples, sample_itemsize=2,
-                                     read_chunk_bytes=reader.read_chunk_bytes, params=reader.params, process=process)
+            # the plan mdpipe itself makes (within the 64 GB budget of the run below, it is returned)
+            plan = memory.check_memory(reader, ProcessParams(zero_pad=int(options[1]) if options else 1,
+                                                             max_memory_gb=64))
         code, seconds, rss, _ = run([mdpipe, "process", path, "--no-figures", "--out", str(folder / "out"),
                                      "--max-memory-gb", "64", *options], timeout_s=args.timeout,
                                     limit_bytes=int(args.limit_gb * 2**30))

@@ -191,13 +191,7 @@ def json_record(row):
 def write_features_csv(rows, path):
     """One row per target (stdlib csv: pandas would add 0.3 s of import to every capture)."""
     records = [json_record(r) for r in rows]
-
-    def write(tmp):
-        with open(tmp, "w", newline="", encoding="utf-8") as fh:
-            writer = csv.DictWriter(fh, fieldnames=list(records[0]))
-            writer.writeheader()
-            writer.writerows(records)
-    atomic_write(path, write)
+    write_table(path, list(records[0]), records)
 
 
 def write_run_json(path, *, capture, params, layout, radar):
