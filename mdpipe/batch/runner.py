@@ -41,7 +41,7 @@ def locked(out_dir, on_wait=None):
     out_dir = Path(out_dir)
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
-        fd = os.open(out_dir / LOCK_NAME, os.O_RDWR | os.O_CREAT, tables.FILE_MODE)
+        fd = os.open(out_dir / LOCK_NAME, os.O_RDWR | os.O_CREAT, 0o666)  # less the umask
     except OSError as exc:
         raise OutputFolderError(f"{out_dir}: cannot write into this output folder ({exc.strerror}); "
                                 "choose a writable --out") from None

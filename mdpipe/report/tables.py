@@ -31,10 +31,6 @@ SUMMARY_TABLE = "features.csv"
 PARTIAL_PREFIX = ".mdpipe-partial-"  # temporary folders and files; removed by the next run on the same folder
 
 
-FILE_MODE = file_mode()  # read at import, in the main thread: os.umask is process-wide
-FOLDER_MODE = file_mode(folder=True)
-
-
 def atomic_write(path, write):
     """Call ``write(tmp_path)`` and move the result to ``path`` only when it succeeded.
 
@@ -106,7 +102,7 @@ def publish(folder, write):
     tmp = Path(tempfile.mkdtemp(prefix=f"{PARTIAL_PREFIX}{folder.name}.", dir=folder.parent))
     trash = None
     try:
-        os.chmod(tmp, FOLDER_MODE)
+        os.chmod(tmp, file_mode(folder=True))  # as a file's: the umask of now
         write(tmp)
         names = sorted(p.name for p in tmp.iterdir())
         with open(tmp / MARKER, "w", encoding="utf-8") as fh:
