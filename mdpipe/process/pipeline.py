@@ -22,7 +22,8 @@ class CaptureResult:
 
     ``noise_power`` is the receiver noise per chirp and RX (V^2: the median moving power over the
     gate), which is also that of each target's combined slow time (unit-norm RX weights);
-    ``process`` holds the :class:`mdpipe.params.ProcessParams` used.
+    ``process`` holds the :class:`mdpipe.params.ProcessParams` used; ``detection_test`` the
+    :class:`~mdpipe.process.selection.DetectionTest` applied (None with ``--range-m``).
     """
 
     path: str
@@ -34,6 +35,7 @@ class CaptureResult:
     rows: list
     noise_power: float
     process: object
+    detection_test: object = None
 
 
 def target_tracks(stats, detections, process, n_samples):
@@ -126,6 +128,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
                                         chunk_chirps=process.chunk_chirps)
         if reader.constant_description():
             raise ParameterError(f"{path}: {reader.constant_description()}; the recording holds no signal")
+        test = None
         if process.range_m is not None:
             detections = [selection.manual_detection(stats, process.range_m, gate_m=(process.min_range_m, max_range_m),
                                                      params=params, zero_pad=process.zero_pad)]
@@ -142,7 +145,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             row = _base_row(path, stats, process, params)
             row["notes"] = "; ".join([no_detection_note(test, process)] + capture_notes)
             return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row],
-                                 noise_power=noise, process=process)
+                                 noise_power=noise, process=process, detection_test=test)
         tracks = target_tracks(stats, detections, process, params.n_samples)
         detections = [detection for detection, _, _ in tracks]
         targets = target_signals(reader, stats, tracks, process)
@@ -162,4 +165,4 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         rows.append(row)
         analyses.append(analysis)
     return CaptureResult(str(path), params, layout, stats, detections, analyses, rows, noise_power=noise,
-                         process=process)
+                         process=process, detection_test=test)

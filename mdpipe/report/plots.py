@@ -15,7 +15,7 @@ from matplotlib.figure import Figure
 
 from mdpipe.params import FigureParams
 from mdpipe.physics.radar import doppler_hz, range_rate_from_doppler_mps
-from mdpipe.process import combs, selection, spectral
+from mdpipe.process import combs, spectral
 from mdpipe.process.classify import DRONE_SPREAD_MPS
 from mdpipe.process.doppler import noise_level_per_bin
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ
@@ -209,9 +209,8 @@ def range_figure(result, path):
     ax.axvspan(0, edges[0], color="0.85", lw=0, zorder=0, label=f"not searched (gate {gate[0]:.3g}-{gate[-1]:.4g} m)")
     if edges[1] < x_max:
         ax.axvspan(edges[1], x_max, color="0.85", lw=0, zorder=0)
-    if process.range_m is None:  # the band test's threshold on the mean over Doppler; lines are tested per cell
-        test = selection.detection_test(stats, false_alarm_probability=process.false_alarm_probability)
-        level = 10 * np.log10(test.band_threshold)
+    if result.detection_test is not None:  # the band test's threshold on the mean over Doppler; lines per cell
+        level = 10 * np.log10(result.detection_test.band_threshold)
         ax.hlines(level, edges[0], min(edges[1], x_max), color="C3", ls="--", lw=1,
                   label=f"band-test threshold: noise + {level:.2g} dB\n(false alarms "
                         f"{process.false_alarm_probability:g} per capture; Doppler lines tested per cell)")
