@@ -15,7 +15,7 @@ from pathlib import Path
 import click
 
 from mdpipe import __version__
-from mdpipe.errors import MdpipeError
+from mdpipe.errors import MdpipeError, one_line
 from mdpipe.io import open_capture
 from mdpipe.io.radarlog import ATTRIBUTES
 from mdpipe.params import RANGE_WINDOWS, FigureParams, ProcessParams
@@ -84,10 +84,9 @@ class Group(click.Group):
             raise InputError(str(exc)) from None
         except (click.ClickException, click.exceptions.Exit, click.exceptions.Abort):
             raise
-        except OSError as exc:  # outside any one capture's work: writing a summary, a folder that vanished
-            raise InputError(" ".join(str(exc).split())) from None
-        except Exception as exc:  # an input nobody foresaw, or a bug: one line all the same
-            raise InputError(f"internal error, {type(exc).__name__}: {' '.join(str(exc).split())}") from None
+        except Exception as exc:  # OSError outside any one capture's work (writing a summary, a folder that
+            # vanished), an input nobody foresaw, or a bug: one line all the same
+            raise InputError(one_line(exc)) from None
         except KeyboardInterrupt:
             click.echo("Interrupted.", err=True)
             raise click.exceptions.Exit(EXIT_INTERRUPTED) from None

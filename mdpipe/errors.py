@@ -15,3 +15,13 @@ class CaptureFormatError(MdpipeError):
 
 class PlatformError(MdpipeError):
     """This platform lacks something an operation needs (e.g. ``os.pwrite`` on Windows)."""
+
+
+def one_line(exc):
+    """``exc`` as one line: its text with whitespace runs (newlines too) made single spaces; an exception
+    mdpipe did not raise on purpose (neither an :class:`MdpipeError` nor an ``OSError``) is called an internal
+    error and named by its type."""
+    text = str(exc)
+    if not isinstance(exc, (MdpipeError, OSError)):
+        text = f"internal error, {type(exc).__name__}: {text}"
+    return " ".join(text.split())

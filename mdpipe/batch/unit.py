@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Optional
 
 from mdpipe.batch import manifest
+from mdpipe import errors
 from mdpipe.errors import MdpipeError
 from mdpipe.params import FigureParams, ProcessParams
 from mdpipe.process.pipeline import process_capture
@@ -99,14 +100,10 @@ def _write_outputs(result, job, folder):
 
 def one_line(capture, exc, *, writing=False):
     """The message of a failed capture, on one line, naming the capture."""
-    text = str(exc)
     if writing:
-        text = f"{capture}: cannot write its outputs: {text}"
-    elif not isinstance(exc, (MdpipeError, OSError)):
-        text = f"{capture}: internal error, {type(exc).__name__}: {text}"
-    elif str(capture) not in text:
-        text = f"{capture}: {text}"
-    return " ".join(text.split())
+        return " ".join(f"{capture}: cannot write its outputs: {exc}".split())
+    named = isinstance(exc, (MdpipeError, OSError)) and str(capture) in str(exc)
+    return errors.one_line(exc) if named else " ".join(f"{capture}: {errors.one_line(exc)}".split())
 
 
 def failure(job, message, trace=None, *, keep_trace=False, identity=None):
