@@ -22,7 +22,7 @@ from mdpipe.physics import kinematics
 from mdpipe.physics.radar import doppler_hz
 from mdpipe.simulate.random_process import SmoothProcess, target_rng
 from mdpipe.simulate.schema import NON_NEGATIVE, POSITIVE, check
-from mdpipe.simulate.targets.common import Echo, Motion, amplitude_bound_v, carrier
+from mdpipe.simulate.targets.common import Echo, Motion, amplitude_bound_v, body_track, carrier  # noqa: F401
 
 MAX_DRIFT_FRACTION = 1.0
 STROKE_GRID = 2049
@@ -112,10 +112,6 @@ def realize(target, *, seed, index, duration_s):
     return Realization(duration_s, process, max(process.max_abs(q) for q in range(n_points)))
 
 
-def body_track(target, realization, t_s):
-    return target.motion.track(t_s)
-
-
 def stroke(target, realization, t_s):
     """The stroke ``envelope(t) cos(phase(t))`` in [-1, 1] (0 = the mean pose, the glide)."""
     phase = bird_physics.wingbeat_phase_rad(t_s, wingbeat_hz=target.wingbeat_hz,
@@ -138,7 +134,7 @@ def points_m(target, realization, t_s, *, steady=False):
 
     ``steady`` flaps at ``wingbeat_hz`` throughout, ignoring bursts and drift.
     """
-    position, _ = body_track(target, realization, t_s)
+    position = target.motion.position(t_s)
     if steady or target.steady:
         angles = bird_physics.flap_angles_rad(t_s, **target.flap_kwargs)
     else:

@@ -19,7 +19,7 @@ from mdpipe.errors import ParameterError
 from mdpipe.physics import kinematics
 from mdpipe.simulate.random_process import target_rng
 from mdpipe.simulate.schema import NON_NEGATIVE, POSITIVE, Vec3, check
-from mdpipe.simulate.targets.common import Echo, amplitude_bound_v, carrier
+from mdpipe.simulate.targets.common import Echo, amplitude_bound_v, point_signal
 
 SWAY_RATIOS = np.array([1.0, np.sqrt(2.0), np.sqrt(5.0)])
 SWAY_SPEED_SHARES = np.array([0.6, 0.25, 0.15])  # of the speed bound 2 pi f A; they sum to 1
@@ -99,12 +99,12 @@ def body_track(target, realization, t_s):
 def echo(target, realization, t_s, *, f0_hz):
     position, _ = body_track(target, realization, t_s)
     branch_range = kinematics.range_m(position)
-    signal = np.sqrt(target.rcs_m2) / branch_range**2 * carrier(branch_range, f0_hz)
+    signal = point_signal(branch_range, target.rcs_m2, f0_hz)
     for k in range(target.leaves):
         arg = 2.0 * np.pi * realization.leaf_freqs_hz[k] * t_s + realization.leaf_phases_rad[k]
         flutter = target.leaf_flutter_m * np.sin(arg)[..., None] * realization.leaf_directions[k]
         leaf_range = kinematics.range_m(position + realization.leaf_offsets_m[k] + flutter)
-        signal = signal + np.sqrt(target.leaf_rcs_m2) / leaf_range**2 * carrier(leaf_range, f0_hz)
+        signal = signal + point_signal(leaf_range, target.leaf_rcs_m2, f0_hz)
     return Echo(signal, branch_range, kinematics.line_of_sight(position))
 
 

@@ -58,10 +58,18 @@ class Motion:
                     sway_amplitude_m=np.array(self.sway_amplitude_m), sway_period_s=self.sway_period_s,
                     sway_phase_rad=np.deg2rad(self.sway_phase_deg))
 
+    def position(self, t_s):
+        """Position (..., 3) at times ``t_s``."""
+        return kinematics.body_position_m(t_s, **self.kwargs)
+
     def track(self, t_s):
         """Position (..., 3) and velocity (..., 3) at times ``t_s``."""
-        kwargs = self.kwargs
-        return kinematics.body_position_m(t_s, **kwargs), kinematics.body_velocity_mps(t_s, **kwargs)
+        return self.position(t_s), kinematics.body_velocity_mps(t_s, **self.kwargs)
+
+
+def body_track(target, realization, t_s):
+    """``body_track`` of the kinds that move by a :class:`Motion` (``target.motion``)."""
+    return target.motion.track(t_s)
 
 
 def carrier(range_m, f0_hz):
@@ -69,10 +77,15 @@ def carrier(range_m, f0_hz):
     return np.exp(-1j * two_way_phase_rad(range_m, frequency_hz=f0_hz))
 
 
+def point_signal(range_m, rcs_m2, f0_hz):
+    """Echo signal (V) of a point scatterer of ``rcs_m2`` at ``range_m``: ``sqrt(rcs) / R^2 exp(-j 4 pi f0 R / c)``."""
+    return np.sqrt(rcs_m2) / range_m**2 * carrier(range_m, f0_hz)
+
+
 def point_echo(position_m, rcs_m2, f0_hz):
     """Echo of one point scatterer at positions (..., 3)."""
     ranges = kinematics.range_m(position_m)
-    return Echo(np.sqrt(rcs_m2) / ranges**2 * carrier(ranges, f0_hz), ranges, kinematics.line_of_sight(position_m))
+    return Echo(point_signal(ranges, rcs_m2, f0_hz), ranges, kinematics.line_of_sight(position_m))
 
 
 def max_speed_doppler_hz(position_m, velocity_mps, *, wavelength_m):

@@ -18,7 +18,7 @@ from mdpipe.physics import kinematics, rotor
 from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS
 from mdpipe.simulate.random_process import SmoothProcess, target_rng
 from mdpipe.simulate.schema import NON_NEGATIVE, POSITIVE, Vec3, check
-from mdpipe.simulate.targets.common import Echo, Motion, amplitude_bound_v, carrier
+from mdpipe.simulate.targets.common import Echo, Motion, amplitude_bound_v, body_track, carrier  # noqa: F401
 
 MAX_BLADE_LENGTH_M = 2.0
 SPEED_OF_SOUND_MPS = 343.0
@@ -144,14 +144,10 @@ def realize(target, *, seed, index, duration_s):
                       np.array([process.max_abs(i) for i in range(rotors.count)]))
 
 
-def body_track(target, realization, t_s):
-    return target.motion.track(t_s)
-
-
 def echo(target, realization, t_s, *, f0_hz):
     """Body scatterers plus every rotor's blades, each rotor at its hub's range."""
     wavelength_m = SPEED_OF_LIGHT_MPS / f0_hz
-    position, _ = body_track(target, realization, t_s)
+    position = target.motion.position(t_s)
     body_range = kinematics.range_m(position)
     amplitude = 1.0 / body_range**2
     signal = np.sqrt(target.body_rcs_m2) * carrier(body_range, f0_hz)

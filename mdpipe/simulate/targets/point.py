@@ -5,7 +5,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mdpipe.simulate.schema import POSITIVE
-from mdpipe.simulate.targets.common import Motion, amplitude_bound_v, point_echo
+from mdpipe.simulate.targets.common import Motion, amplitude_bound_v, body_track, point_echo  # noqa: F401
 
 
 @dataclass(frozen=True)
@@ -23,13 +23,8 @@ def realize(target, *, seed, index, duration_s):
     return None
 
 
-def body_track(target, realization, t_s):
-    return target.motion.track(t_s)
-
-
 def echo(target, realization, t_s, *, f0_hz):
-    position, _ = body_track(target, realization, t_s)
-    return point_echo(position, target.rcs_m2, f0_hz)
+    return point_echo(target.motion.position(t_s), target.rcs_m2, f0_hz)
 
 
 def micro_doppler_bound_hz(target, realization, *, wavelength_m):

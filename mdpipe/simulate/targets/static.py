@@ -5,7 +5,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mdpipe.simulate.schema import POSITIVE
-from mdpipe.simulate.targets.common import Echo, carrier
+from mdpipe.simulate.targets.common import Echo, point_signal
 from mdpipe.simulate.targets.point import (  # noqa: F401 (one point scatterer: a point's draws, bounds, truth)
     micro_doppler_bound_hz, peak_amplitude_v, realize, truth)
 
@@ -36,6 +36,6 @@ def body_track(target, realization, t_s):
 def echo(target, realization, t_s, *, f0_hz):
     """A constant echo."""
     shape = np.shape(t_s)
-    value = np.sqrt(target.rcs_m2) / target.range_m**2 * carrier(target.range_m, f0_hz)
+    value = point_signal(target.range_m, target.rcs_m2, f0_hz)
     return Echo(np.full(shape, value, dtype=np.complex128), np.full(shape, target.range_m),
                 np.broadcast_to(target.position_m / target.range_m, shape + (3,)))
