@@ -573,9 +573,8 @@ def evaluate(sweep_path, out_dir, jobs, limit, keep_captures):
 
     start = time.perf_counter()
     draws = sweep.draw_scenes(sweep.load_sweep(sweep_path), limit=limit)
-    prepared = run.prepare(draws)
     out_dir.mkdir(parents=True, exist_ok=True)
-    frame = summary.records_frame(run.run_all(prepared, out_dir, jobs=jobs, keep_captures=keep_captures))
+    frame = summary.records_frame(run.run_all(draws, out_dir, jobs=jobs, keep_captures=keep_captures))
     text = summary.report(frame, title=f"mdpipe evaluate {sweep_path}",
                           wall_s=time.perf_counter() - start, jobs=jobs)
     atomic_write(out_dir / "scenes.csv", lambda tmp: frame.to_csv(tmp, index=False))

@@ -136,7 +136,7 @@ def test_line_snr_of_a_point_matches_the_measured_doppler_line(tmp_path):
                             noise={"snr_db": 0.0}, seed=4)
     path, truth = simulate(tmp_path, mapping)
     scene = scene_from_mapping(mapping)
-    physics = scoring.physics_of(scene.targets[0], truth["targets"][0], scene=scene,
+    physics = scoring.physics_of(0, truth["targets"][0], scene=scene,
                                  noise_sigma_v=truth["simulation"]["noise_sigma_v"], process={})
     assert physics.body_line_snr_db == pytest.approx(10 * np.log10(64 / 3 * 4000), abs=0.05)
     signal, _params = slow_time(path, truth["targets"][0]["range_bin"])
@@ -168,7 +168,8 @@ def test_default_sweep_is_large_varied_and_every_scene_is_accepted():
     assert max(d.scene["radar"]["n_chirps"] for d in draws) <= 40000
     given = [d.process["n_blades"] is not None for d in draws if d.scene["targets"][0].get("type") == "multirotor"]
     assert 0.3 < np.mean(given) < 0.7  # N given to about half of the drones
-    run.prepare(draws)  # every scene accepted by the simulator
+    for draw in draws:  # every scene accepted by the simulator
+        scene_from_mapping(draw.scene)
 
 
 def test_distributions():
@@ -207,10 +208,9 @@ def test_a_capture_the_processing_fails_on_is_recorded_as_a_wrong_class(tmp_path
 
     monkeypatch.setattr(mdpipe.process.pipeline, "process_capture", fail)
     draw = sweep.draw_scene(sweep.load_sweep(SWEEPS / "smoke.yaml"), 5)
-    [(draw, mapping)] = run.prepare([draw])
     (tmp_path / "scenes").mkdir()
     (tmp_path / "captures").mkdir()
-    [record] = run.run_scene(draw, mapping, tmp_path)
+    [record] = run.run_scene(draw, tmp_path)
     assert record["measured_class"] == "error" and not record["class_ok"]
     assert record["error"] == "RuntimeError: boom" and not list((tmp_path / "captures").iterdir())
     text = summary.report(summary.records_frame([record]), title="t", wall_s=1.0, jobs=1)

@@ -8,7 +8,6 @@ from pathlib import Path
 import yaml
 from threadpoolctl import threadpool_limits
 
-from mdpipe.errors import ParameterError
 from mdpipe.evaluate import scoring
 from mdpipe.params import ProcessParams
 
@@ -22,24 +21,7 @@ def process_params(process):
     return ProcessParams(**process), "auto" if process.get("n_blades") is None else "given"
 
 
-def prepare(draws):
-    """Each draw with its scene mapping, validated by the simulator.
-
-    Raises :class:`ParameterError` naming the first scene the simulator rejects.
-    """
-    from mdpipe.simulate.scene import scene_from_mapping
-
-    prepared = []
-    for draw in draws:
-        try:
-            scene_from_mapping(draw.scene)
-        except ParameterError as exc:
-            raise ParameterError(f"scene {draw.name}: {exc}") from None
-        prepared.append((draw, draw.scene))
-    return prepared
-
-
-def write_scene_yaml(path, draw, mapping):
+def write_scene_yaml(path, draw):
     """The drawn scene as a scene YAML with the command lines that rerun it."""
     options = ""
     if draw.process.get("n_blades") is not None:
@@ -49,7 +31,7 @@ def write_scene_yaml(path, draw, mapping):
     header = [f"# family {draw.family}, band {draw.band}. Rerun:",
               f"#   mdpipe simulate --config {path.name} -o {draw.name}.h5",
               f"#   mdpipe process {draw.name}.h5{options}"]
-    path.write_text("\n".join(header) + "\n" + yaml.safe_dump(mapping, sort_keys=False), encoding="utf-8")
+    path.write_text("\n".join(header) + "\n" + yaml.safe_dump(draw.scene, sort_keys=False), encoding="utf-8")
 
 
 def score_scene(draw, scene, truth, rows, *, process):
@@ -68,7 +50,7 @@ def score_scene(draw, scene, truth, rows, *, process):
         physics, match, extra, track = base, (detected[0] if detected else None), detected[1:], None
     else:
         track = truth["targets"][subject]
-        physics = scoring.physics_of(scene.targets[subject], track, scene=scene,
+        physics = scoring.physics_of(subject, track, scene=scene,
                                      noise_sigma_v=truth["simulation"]["noise_sigma_v"], process=process)
         match, extra = scoring.match_rows(rows, range_min_m=track["range_m"]["min"],
                                           range_max_m=track["range_m"]["max"],
@@ -86,8 +68,9 @@ def score_scene(draw, scene, truth, rows, *, process):
     return records
 
 
-def run_scene(draw, mapping, out_dir, keep_captures=False):
-    """Simulate, process and score one prepared scene; a list of record dicts (see :func:`score_scene`).
+def run_scene(draw, out_dir, keep_captures=False):
+    """Simulate, process and score one drawn scene (:func:`mdpipe.evaluate.sweep.draw_scene` has had the
+    simulator accept it); a list of record dicts (see :func:`score_scene`).
 
     A capture the processing fails on (any exception: the benchmark measures the processing, it does
     not stop at its first failure) is recorded with the error and counts as a wrong class.
@@ -97,9 +80,9 @@ def run_scene(draw, mapping, out_dir, keep_captures=False):
     from mdpipe.simulate.scene import scene_from_mapping, scene_to_yaml
 
     out_dir = Path(out_dir)
-    write_scene_yaml(out_dir / SCENES_DIR / f"{draw.name}.yaml", draw, mapping)
+    write_scene_yaml(out_dir / SCENES_DIR / f"{draw.name}.yaml", draw)
     capture = out_dir / CAPTURES_DIR / f"{draw.name}.h5"
-    scene = scene_from_mapping(mapping)
+    scene = scene_from_mapping(draw.scene)
     params, blades_source = process_params(draw.process)
     common = {"scene": draw.name, "family": draw.family, "band": draw.band,
               "wavelength_m": scene.radar.params.wavelength_m, "prf_hz": scene.radar.params.prf_hz,
@@ -108,7 +91,7 @@ def run_scene(draw, mapping, out_dir, keep_captures=False):
               "elevation_given": "elevation_deg" in draw.process}
     with threadpool_limits(limits=1):
         start = time.perf_counter()
-        truth = simulate_to_file(scene, capture, scene_yaml=scene_to_yaml(mapping))
+        truth = simulate_to_file(scene, capture, scene_yaml=scene_to_yaml(draw.scene))
         simulated = time.perf_counter()
         try:
             rows, error = process_capture(capture, params).rows, ""
@@ -124,8 +107,8 @@ def run_scene(draw, mapping, out_dir, keep_captures=False):
     return records
 
 
-def run_all(prepared, out_dir, *, jobs=1, keep_captures=False):
-    """Records of every prepared scene, in scene order; ``jobs`` worker processes.
+def run_all(draws, out_dir, *, jobs=1, keep_captures=False):
+    """Records of every drawn scene, in scene order; ``jobs`` worker processes.
 
     ``out_dir/scenes/`` is emptied of scene files first, so that it holds exactly this run's scenes.
     """
@@ -134,7 +117,7 @@ def run_all(prepared, out_dir, *, jobs=1, keep_captures=False):
         (out_dir / sub).mkdir(parents=True, exist_ok=True)
     for stale in (out_dir / SCENES_DIR).glob("*.yaml"):  # scenes.csv will describe this run's scenes only
         stale.unlink()
-    args = [(draw, mapping, out_dir, keep_captures) for draw, mapping in prepared]
+    args = [(draw, out_dir, keep_captures) for draw in draws]
     if jobs == 1:
         results = [run_scene(*a) for a in args]
     else:

@@ -24,7 +24,6 @@ from mdpipe.simulate.targets import module_of, target_echo
 from mdpipe.simulate.targets.bird import wing_speed_max_mps
 
 FEATURES = ("rotation_rate_hz", "blade_length_m", "wingbeat_freq_hz", "body_velocity_mps")
-CLASS_OF_KIND = {"multirotor": "drone", "bird": "bird"}
 TOLERANCE = 0.10             # a confident value more than 10 % off is wrong
 VELOCITY_FLOOR_MPS = 1.0     # body velocity error is relative to max(|v|, 1 m/s): 0.1 m/s near hover
 LINE_SNR_DB = 13.0           # a spectral line is detectable: Pfa 1e-5 per bin needs 10.6 dB, + ~2.5 dB for Pd 0.9
@@ -73,7 +72,7 @@ class Physics:
     def detectable(self):
         """The echo that tells the class stands ``LINE_SNR_DB`` above the noise: a drone's blade or a bird's
         wing lines (a body line alone does not tell a drone from a bird); any line of anything else."""
-        if self.kind in CLASS_OF_KIND:
+        if self.expected_class != "none":
             return self.micro_line_snr_db >= LINE_SNR_DB
         return max(self.micro_line_snr_db, self.body_line_snr_db) >= LINE_SNR_DB
 
@@ -247,7 +246,7 @@ def body_rcs_m2(target):
     scatterers, a point's (or branch's) own RCS."""
     if target.kind in ("multirotor", "bird"):
         scatterers = getattr(target, "body_scatterers", None) or ()
-        return target.body_rcs_m2 + sum(_item(s, "rcs_m2") for s in scatterers)
+        return target.body_rcs_m2 + sum(s.rcs_m2 for s in scatterers)
     return float(getattr(target, "rcs_m2", 0.0))
 
 
@@ -271,26 +270,28 @@ def line_count(extent_hz, spacing_hz, *, prf_hz):
     return max(1.0, min(extent_hz, prf_hz) / spacing_hz)
 
 
-def physics_of(target, expected, *, scene, noise_sigma_v, process):
-    """:class:`Physics` of one scene target.
+def physics_of(index, expected, *, scene, noise_sigma_v, process):
+    """:class:`Physics` of the scene's target ``index``.
 
     Parameters
     ----------
-    target : a target of :class:`mdpipe.simulate.scene.Scene`
+    index : int
+        The target's index in ``scene.targets`` (its seed index).
     expected : dict
-        Its entry of the capture's ``/Truth`` ``expected.targets`` (body track, ``expected_class``).
+        Its entry of the capture's ``/Truth`` ``expected.targets`` (body track, rotor rates, blade imbalance).
     scene : Scene
     noise_sigma_v : float
         Noise standard deviation per IF sample (V), from ``/Truth`` ``simulation``.
     process : dict
         The :class:`mdpipe.params.ProcessParams` keywords given (``n_blades``, ``elevation_deg``).
     """
+    target = scene.targets[index]
     radar = scene.radar.params
     n_chirps = scene.radar.n_chirps
     dwell_s = radar.duration_s(n_chirps)
     wavelength_m, prf_hz = radar.wavelength_m, radar.prf_hz
     kind = target.kind
-    base = dict(kind=kind, expected_class=expected.get("expected_class", CLASS_OF_KIND.get(kind, "none")),
+    base = dict(kind=kind, expected_class=target.expected_class,
                 dwell_s=dwell_s, prf_hz=prf_hz, velocity_span_mps=wavelength_m * prf_hz / 2,
                 range_bin_m=radar.range_bin_m)
     if kind == "static":
@@ -298,7 +299,7 @@ def physics_of(target, expected, *, scene, noise_sigma_v, process):
     noise_v2 = noise_sigma_v ** 2 if noise_sigma_v > 0 else np.finfo(float).tiny
     gain = radar.n_samples / 3.0 * radar.n_channels * n_chirps
     micro = echo_power_v2(_without_body(target), f0_hz=radar.f_start_hz, dwell_s=dwell_s, seed=scene.seed,
-                          index=scene.targets.index(target)) \
+                          index=index) \
         if kind in ("multirotor", "bird") else 0.0
     body_rcs = body_rcs_m2(target)
     body_power = 0.5 * body_rcs * float(np.mean(np.asarray(expected["track"]["range_m"]) ** -4.0))
@@ -309,30 +310,23 @@ def physics_of(target, expected, *, scene, noise_sigma_v, process):
                 body_line_snr_db=_db(body_power / noise_v2 * gain / max(1.0, sweep_hz * dwell_s)))
     if kind == "multirotor":
         rotors = target.rotors
-        rates = tuple(float(r) for r in np.abs(rotors.per_rotor("rev_per_s")))
+        rates = tuple(expected["rotor_rates_hz"])
         tip_hz = float(rotor.tip_doppler_hz(max(rates), blade_length_m=rotors.blade_length_m,
                                             wavelength_m=wavelength_m, elevation_deg=target.elevation_deg))
         distinct = len(np.unique(np.round(np.array(rates) * dwell_s)))  # rotors resolved in the dwell spectrum
         lines = distinct * line_count(2 * tip_hz + sweep_hz, rotors.blades * np.mean(rates), prf_hz=prf_hz)
-        gains = getattr(rotors, "blade_gains", None)
         return Physics(**base, micro_line_snr_db=_db(micro / noise_v2 * gain / lines), rotor_rates_hz=rates,
                        n_blades=rotors.blades, blade_length_m=rotors.blade_length_m,
                        elevation_deg=target.elevation_deg, blades_given=process.get("n_blades") is not None,
                        elevation_given="elevation_deg" in process,
-                       imbalanced=gains is not None and len(set(gains)) > 1, tip_doppler_hz=tip_hz)
+                       imbalanced=expected["blade_imbalance"], tip_doppler_hz=tip_hz)
     if kind == "bird":
         spread_hz = 4.0 * wing_speed_max_mps(target) / wavelength_m
         lines = line_count(spread_hz + sweep_hz, target.wingbeat_hz, prf_hz=prf_hz)
-        flap_glide = getattr(target, "flap_glide", None)
-        flap_run_s = dwell_s if flap_glide is None else min(dwell_s, _item(flap_glide, "flap_s"))
+        flap_run_s = dwell_s if target.flap_glide is None else min(dwell_s, target.flap_glide.flap_s)
         return Physics(**base, micro_line_snr_db=_db(micro / noise_v2 * gain / lines),
                        wingbeat_hz=target.wingbeat_hz, flap_run_s=flap_run_s)
     return Physics(**base)
-
-
-def _item(value, name):
-    """Entry ``name`` of a nested scene block, whether a dataclass or a mapping."""
-    return value[name] if isinstance(value, dict) else getattr(value, name)
 
 
 def _db(ratio):
