@@ -505,9 +505,9 @@ def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_
     return tip, length, (edges.low_hz, edges.high_hz)
 
 
-def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s):
+def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     """Wingbeat frequency (Hz) of a bird's body-demodulated echo, from two wingbeats in the dwell on."""
-    beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power)
+    beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz)
     if beat is not None and beat.strength >= (MIN_PERIODICITY if beat.repeats >= 2 else MIN_SINGLE_PERIODICITY):
         return Measured(1.0 / beat.period_s)
     note = (f"no wingbeat between {max(MIN_WINGBEAT_HZ, 2.0 / dwell_s):.2g} and {MAX_WINGBEAT_HZ:g} Hz "
@@ -577,8 +577,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     if turn.chopping.value is not None:
         beat = withheld("not_applicable", "")  # blade flashes exclude a bird
     else:
-        beat = wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s),
-                     band.halfwidth)
+        beat = wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
+                                   band_hz=2 * band.half_width_hz), band.halfwidth)
     rate_hz = turn.rate.value
     row = {
         **_columns("snr_db", snr_db),

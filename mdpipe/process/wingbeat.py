@@ -14,6 +14,9 @@ from mdpipe.process.periodicity import period_from_autocorrelation
 
 FRAME_S = 0.064
 HOP_S = 0.016
+MIN_FRAME_S = 0.016
+BAND_BINS = 48        # a frame resolves the micro-Doppler band into this many bins, no more: shorter frames
+                      # follow faster wingbeats (a 15 Hz beat lasts one 64 ms frame)
 MIN_WINGBEAT_HZ = 0.3
 MAX_WINGBEAT_HZ = 20.0
 MAX_MICRO_DOPPLER_HZ = 2000.0  # rows kept: wings move at a few m/s (< 2 kHz even at 76 GHz)
@@ -39,13 +42,18 @@ def pattern_autocorrelation(spec, *, detrend_frames, noise_level):
     return r / r[0] if r[0] > 0 else r
 
 
-def wingbeat(demodulated, *, prf_hz, noise_power):
+def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
     """Wingbeat period of a body-demodulated echo (noise ``noise_power`` per chirp), or None.
+
+    The spectrogram frame is ``FRAME_S``, or shorter where the micro-Doppler band (``band_hz`` wide) still
+    holds ``BAND_BINS`` Doppler bins at the shorter frame (down to ``MIN_FRAME_S``).
 
     Needs two wingbeats in the dwell; with fewer than three the period cannot be seen to repeat
     (``repeats`` is 1) and the caller asks more of its strength.
     """
     frame_s = min(FRAME_S, len(demodulated) / prf_hz / 8)
+    if band_hz:
+        frame_s = min(frame_s, max(MIN_FRAME_S, BAND_BINS / band_hz))
     hop_s = HOP_S * frame_s / FRAME_S
     spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=hop_s)
     frame_rate = 1.0 / spec.hop_s
