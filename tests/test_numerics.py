@@ -72,3 +72,8 @@ def test_lagrange_basis_is_barycentric_interpolator(k):
     expected = BarycentricInterpolator(nodes, np.eye(k))(times).T
     np.testing.assert_allclose(lagrange_basis(nodes, times), expected, atol=1e-9)
     np.testing.assert_allclose(lagrange_basis(nodes, nodes), np.eye(k), atol=1e-12)  # exactly on the nodes
+
+
+def test_fold_hz_into_the_span():
+    np.testing.assert_allclose(doppler.fold_hz([0.0, 499.0, 500.0, 1250.0, -1250.0, -500.0], prf_hz=1000.0),
+                               [0.0, 499.0, -500.0, 250.0, -250.0, -500.0])

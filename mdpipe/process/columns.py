@@ -69,7 +69,7 @@ COLUMNS = (
            "`doppler_bw_spectrogram_hz`", STATUS),
     Column("blade_length_m", "m", "blade length r from Eq. 6 with the tip Doppler, the rotation rate and "
            "`elevation_deg`", STATUS),
-    Column("body_velocity_mps", "m/s, + receding", "mean body range rate over the dwell, -lambda f_body / 2 (the body line's track, each 32 ms frame's strongest line, running median over 9 frames; unfolded with the range track where the Doppler aliases)", STATUS),
+    Column("body_velocity_mps", "m/s, + receding", "mean body range rate over the dwell, -lambda f_body / 2 (the body line's track, each 32 ms frame's strongest line, unwrapped across the span's ends, running median over 9 frames; unfolded with the range track where the Doppler aliases)", STATUS),
     Column("body_doppler_hz", "Hz, + approaching", "mean Doppler of the body line's track over the dwell (folded into the span)", STATUS),
     Column("wingbeat_freq_hz", "Hz", "wingbeat frequency: period of the autocorrelation of the detrended "
            "log-spectrogram", STATUS),

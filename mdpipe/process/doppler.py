@@ -101,8 +101,9 @@ def peak_track_hz(spec, *, n_chirps, prf_hz, smooth_frames=5):
     """Doppler of the strongest line of each frame of ``spec`` (the body), at each of ``n_chirps`` chirps.
 
     Per frame the peak of the spectrum is refined by a parabola through its neighbours; the track is
-    median-filtered over ``smooth_frames`` frames and interpolated to the chirps (``n_chirps`` None:
-    one value per frame).
+    unwrapped across the ends of the span (a body whose Doppler drifts past +-PRF/2 goes on beyond it, not
+    back from the other end: :func:`fold_hz` folds it back), median-filtered over ``smooth_frames``
+    frames and interpolated to the chirps (``n_chirps`` None: one value per frame).
 
     Returns
     -------
@@ -115,10 +116,15 @@ def peak_track_hz(spec, *, n_chirps, prf_hz, smooth_frames=5):
     curvature = left - 2 * mid + right
     shift = np.where(curvature < 0, 0.5 * (left - right) / np.where(curvature < 0, curvature, -1), 0.0)
     f_peak = spec.f_hz[inner] + np.clip(shift, -0.5, 0.5) * (spec.f_hz[1] - spec.f_hz[0])
-    f_peak = running_median(f_peak, min(smooth_frames, len(f_peak)) | 1)
+    f_peak = running_median(np.unwrap(f_peak, period=prf_hz), min(smooth_frames, len(f_peak)) | 1)
     if n_chirps is None:
         return f_peak
     return np.interp(np.arange(n_chirps) / prf_hz, spec.t_s, f_peak)
+
+
+def fold_hz(doppler_hz, *, prf_hz):
+    """Doppler folded into the unambiguous span ``[-PRF/2, PRF/2)``: what the slow-time samples show of it."""
+    return np.mod(np.asarray(doppler_hz, dtype=np.float64) + prf_hz / 2, prf_hz) - prf_hz / 2
 
 
 def demodulate(signal, doppler_hz, *, prf_hz):

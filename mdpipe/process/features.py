@@ -149,7 +149,7 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
                                          "next line)"), signal)
     frame_track = doppler.peak_track_hz(spec, n_chirps=None, prf_hz=prf_hz, smooth_frames=BODY_TRACK_FRAMES)
     bin_hz = spec.f_hz[1] - spec.f_hz[0]
-    on_track = float(np.mean(np.abs(spec.f_hz[peak] - frame_track) <= 2 * bin_hz))
+    on_track = float(np.mean(np.abs(doppler.fold_hz(spec.f_hz[peak] - frame_track, prf_hz=prf_hz)) <= 2 * bin_hz))
     if on_track < BODY_STEADY_SHARE:
         return BodyMotion(None, withheld("body_unsteady", f"body velocity not estimable: the strongest line lies on "
                                          f"the body track in only {on_track:.0%} of the frames"), signal)
@@ -563,7 +563,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     snr_db = Measured(float(10 * np.log10(snr))) if snr > 0 else withheld("no_signal", "no power above the noise")
     body = body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m, track=track)
     band = doppler_band(s, body.demodulated, prf_hz=prf_hz, wavelength_m=wavelength_m, noise_power=noise_power)
-    body_doppler_hz = float(np.mean(body.track_hz)) if body.track_hz is not None else 0.0
+    body_doppler_hz = 0.0 if body.track_hz is None else float(doppler.fold_hz(np.mean(body.track_hz), prf_hz=prf_hz))
     bandwidth, extent = paper_bandwidth(body.demodulated, prf_hz=prf_hz, threshold_db=params.threshold_db,
                                         body_doppler_hz=body_doppler_hz, aliased=band.aliased)
     turn = rotation(body.demodulated, aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
