@@ -133,6 +133,33 @@ def main():
     """Radar micro-Doppler analysis of drones and birds from Radarlog FMCW captures."""
 
 
+def run():
+    """The ``mdpipe`` console script: :func:`main`, then the process ends without the interpreter's teardown.
+
+    With numpy, h5py, matplotlib and pandas loaded, that teardown (every module's objects freed one by one,
+    for a process about to end) took 0.15-0.35 s of a 2 s batch. The atexit handlers still run and the
+    standard streams are flushed; every file mdpipe writes is closed (and renamed into place) before
+    :func:`main` returns.
+    """
+    import atexit
+
+    try:
+        main()
+        code = 0
+    except SystemExit as exc:
+        code = exc.code
+    if code is not None and not isinstance(code, int):
+        print(code, file=sys.stderr)
+        code = 1
+    atexit._run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):  # a closed pipe: nothing more can reach it
+            pass
+    os._exit(code or 0)
+
+
 @main.command()
 @click.option("--config", "config_path", required=True, type=click.Path(dir_okay=False, path_type=Path),
               help="Scene YAML (see configs/).")

@@ -18,7 +18,7 @@ from mdpipe.batch import runner
 from mdpipe.report import tables
 
 SAMPLES = Path(__file__).resolve().parents[1] / "data_samples"
-MDPIPE = [sys.executable, "-c", "import sys; from mdpipe.cli import main; sys.argv[0] = 'mdpipe'; main()"]
+MDPIPE = [sys.executable, "-c", "import sys; from mdpipe.cli import run; sys.argv[0] = 'mdpipe'; run()"]
 N_CAPTURES = 24
 
 
