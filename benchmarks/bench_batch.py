@@ -28,7 +28,8 @@ from pathlib import Path
 from mdpipe.batch import manifest
 
 ROOT = Path(__file__).resolve().parents[1]
-MAIN = "import sys; from mdpipe.cli import main; sys.argv[0] = 'mdpipe'; main()"
+# What the console script runs: ``run`` (``main`` for commits before it).
+MAIN = "import sys; import mdpipe.cli as cli; sys.argv[0] = 'mdpipe'; getattr(cli, 'run', cli.main)()"
 
 
 def mdpipe(args, src=None):

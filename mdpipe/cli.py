@@ -519,8 +519,6 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
     if scheduler is not None and scheduler != "local" and "://" not in scheduler:
         raise UsageError(f"--scheduler {scheduler!r}: give 'local' or an address such as tcp://HOST:8786")
     jobs = _jobs(inputs, out_dir, options, figures=not no_figures)
-    if not no_figures:
-        _import_in_background(["mdpipe.report.plots", "pandas"])
     progress = Progress(len(jobs), sys.stderr) if sys.stderr.isatty() else None
     counts = {"done": 0, "failed": 0, "up to date": 0}
 
@@ -537,7 +535,8 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
 
     try:
         _run(jobs, on_outcome=tally, debug=debug, progress=progress, workers=workers, scheduler=scheduler,
-             track=True, finish=summary)
+             track=True, finish=summary,
+             started=lambda: None if no_figures else _import_in_background(["mdpipe.report.plots", "pandas"]))
     except (KeyboardInterrupt, Terminated) as exc:
         click.echo(f"Interrupted after {sum(counts.values())} of {len(jobs)} captures; each capture is published "
                    "whole or not at all: run the same command again to finish.", err=True)

@@ -4,8 +4,13 @@ one capture, a full disk, a read-only OUT, and Dask against the process pool."""
 import csv
 import errno
 import json
+import multiprocessing
 import os
 import shutil
+import signal
+import time
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 
 import pytest
@@ -312,3 +317,45 @@ def test_the_pool_starts_the_largest_captures_first(tmp_path):
     names = ["a", "gone", "b", "c", "d"]
     jobs = [unit.Job(str(tmp_path / f"{n}.h5"), n, None, ProcessParams(), {}, None) for n in names]
     assert [job.key for job in runner._largest_first(jobs)] == ["b", "d", "a", "c", "gone"]
+
+
+def _terminate_self():
+    os.kill(os.getpid(), signal.SIGTERM)
+    time.sleep(5)
+
+
+def test_a_forked_worker_ends_on_sigterm_whatever_handler_it_inherited():
+    """The command's SIGTERM handler raises to unwind the batch; a worker forked under it must still just end
+    when the pool stops it."""
+    from mdpipe.batch import runner
+    from mdpipe.cli import _terminated
+
+    previous = signal.signal(signal.SIGTERM, _terminated)
+    try:
+        with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=runner._start_worker,
+                                 initargs=(os.getpid(),)) as pool:
+            with pytest.raises(BrokenProcessPool):
+                pool.submit(_terminate_self).result(timeout=30)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def test_forked_and_fork_server_workers_give_the_same_outputs(tmp_path, monkeypatch):
+    """Workers are forked from a process with no other thread, else started by a fork server; both ways
+    publish the same bytes (tables and figures)."""
+    from mdpipe.batch import runner
+    from mdpipe.params import FigureParams, ProcessParams
+
+    names = ("phantom4_xband.h5", "gull_flyby.h5")
+    outputs = {}
+    for threads, start in ((1, "fork"), (2, "forkserver")):
+        monkeypatch.setattr(runner.threading, "active_count", lambda: threads)
+        assert runner._context([]).get_start_method() == start
+        out = tmp_path / start
+        jobs = [unit.Job(str(SAMPLES / name), Path(name).stem, str(out), ProcessParams(),
+                         {"frame_counter": "auto", "overrides": {}}, figures=FigureParams()) for name in names]
+        assert [o.status for o in runner.run(jobs, workers=2)] == ["done", "done"]
+        outputs[start] = {p.relative_to(out).as_posix(): p.read_bytes() for p in out.rglob("*")
+                          if p.is_file() and p.suffix in (".csv", ".png")}
+    assert len(outputs["fork"]) == 2 * 4  # a table and three figures each
+    assert outputs["fork"] == outputs["forkserver"]
