@@ -12,6 +12,7 @@ which part of the unambiguous span ``-PRF/2 .. PRF/2`` that is.
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.ticker import LogLocator
 
 from mdpipe.params import FigureParams
 from mdpipe.physics.radar import doppler_hz, range_rate_from_doppler_mps
@@ -44,6 +45,7 @@ LEGEND_GAP_IN = 0.25       # between a plot's last label and its legend panel
 SUMMARY_STRIP_IN = 1.2     # summary: the strip of rows without a periodicity ...
 SUMMARY_GAP_IN = 0.35      # ... and the room between it and the plot (their tick labels)
 DPI = 110                  # figures are drawn, measured and saved at this resolution
+MINOR_LOG_SUBS = (2.0, 5.0)  # minor ticks of a log axis, per decade
 MIN_PLOT_SHARE = 0.45      # a plot keeps at least this share of the figure's width, however long its legend
 
 
@@ -384,6 +386,8 @@ def summary_figure(features, path):
         no_target += [_name(f) for f in features.loc[chosen & width.isna().to_numpy(), "file"]]
     ax.set_xscale("log")
     ax.set_yscale("log")
+    for axis in (ax.xaxis, ax.yaxis):  # minor ticks and grid at 2 and 5 only: each tick is an artist to draw
+        axis.set_minor_locator(LogLocator(subs=MINOR_LOG_SUBS))
     ax.set_xlim(*x_lim)
     ax.set_ylim(*y_lim)
     strip.set_xlim(-1, 1)
