@@ -42,6 +42,17 @@ def test_local_maxima_against_argrelextrema():
 
 
 
+def test_parabolic_offset_is_the_vertex_and_stays_within_half_a_sample():
+    """Three samples of -(x - 0.3)^2 peak at +0.3; a plateau or an upward curve gives 0; three nearly collinear
+    values off a maximum (an autocorrelation's slope at a search window's edge, where an unclipped vertex
+    lay 8505 samples away) give at most half a sample."""
+    np.testing.assert_allclose(filters.parabolic_offset(-1.69, -0.09, -0.49), 0.3)
+    np.testing.assert_array_equal(filters.parabolic_offset([1.0, 0.0], [1.0, 1.0], [1.0, 2.0]), [0.0, 0.0])
+    slope = (0.018841896515679905, 0.017571506601014898, 0.016300967316577424)
+    assert slope[0] - 2 * slope[1] + slope[2] < 0  # curves down, by rounding only
+    assert filters.parabolic_offset(*slope) == -0.5
+
+
 @pytest.mark.parametrize("n_window, hop", [(64, 16), (24, 3), (33, 7), (128, 1)])
 def test_spectrogram_is_short_time_fft(n_window, hop):
     prf = 15625.0

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
-from mdpipe.process.filters import running_median
+from mdpipe.process.filters import parabolic_offset, running_median
 
 
 STFT_BLOCK_FRAMES = 4096
@@ -113,9 +113,7 @@ def peak_track_hz(spec, *, n_chirps, prf_hz, smooth_frames=5):
     peak = np.argmax(spec.power, axis=0)
     inner = np.clip(peak, 1, len(spec.f_hz) - 2)
     left, mid, right = (log_power[inner + d, np.arange(len(peak))] for d in (-1, 0, 1))
-    curvature = left - 2 * mid + right
-    shift = np.where(curvature < 0, 0.5 * (left - right) / np.where(curvature < 0, curvature, -1), 0.0)
-    f_peak = spec.f_hz[inner] + np.clip(shift, -0.5, 0.5) * (spec.f_hz[1] - spec.f_hz[0])
+    f_peak = spec.f_hz[inner] + parabolic_offset(left, mid, right) * (spec.f_hz[1] - spec.f_hz[0])
     f_peak = running_median(np.unwrap(f_peak, period=prf_hz), min(smooth_frames, len(f_peak)) | 1)
     if n_chirps is None:
         return f_peak

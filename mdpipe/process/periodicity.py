@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mdpipe.process.filters import local_maxima, running_min
+from mdpipe.process.filters import local_maxima, parabolic_offset, running_min
 
 FUNDAMENTAL_SHARE = 0.8
 REPEAT_SHARE = 0.5
@@ -43,9 +43,7 @@ def autocorrelation(signal):
 def _parabolic_peak(r, index):
     if index <= 0 or index >= len(r) - 1:
         return float(index)
-    left, mid, right = r[index - 1], r[index], r[index + 1]
-    curvature = left - 2 * mid + right
-    return index + (0.5 * (left - right) / curvature if curvature < 0 else 0.0)
+    return index + float(parabolic_offset(r[index - 1], r[index], r[index + 1]))
 
 
 def _repeats(prominence, lag, limit, untestable):
