@@ -7,7 +7,8 @@ m/s. So one rule serves X band and 94 GHz:
 * drone: a blade line comb (a chopping frequency measured), or a micro-Doppler half-width above
   ``DRONE_SPREAD_MPS`` (an aliased band counts as at least half the unambiguous span);
 * bird: a wingbeat, which is only measured with a half-width between ``MIN_WING_SPREAD_MPS`` and
-  ``DRONE_SPREAD_MPS`` (about the body line, or the band's centre when no body line stands out);
+  ``DRONE_SPREAD_MPS`` (about the body line, or the band's centre when no body line stands out; for an
+  aliased band, the span's half-width, which the wings' spread exceeds);
 * none: nothing moving above the noise, or neither signature (a branch swaying in the wind repeats
   too, but its micro-Doppler stays below ``MIN_WING_SPREAD_MPS``).
 """

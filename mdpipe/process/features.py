@@ -519,14 +519,16 @@ def wings(beat, halfwidth):
     """A repeating micro-Doppler is a wingbeat only if its spread is that of wings (m/s, wavelength-free).
 
     Below ``MIN_WING_SPREAD_MPS`` it is swaying clutter (a branch, leaves); above ``DRONE_SPREAD_MPS``
-    (or aliased) faster than wing tips move.
+    faster than wing tips move. An aliased band is at least the span's half-width: wings when that
+    lies between the two (at 77-94 GHz a span of 1-4 m/s, which a bird's wing tips overrun; a span over
+    ``DRONE_SPREAD_MPS`` already reads drone).
     """
     if beat.value is None:
         return beat
     if halfwidth.value is None:
         return withheld("not_applicable", f"a micro-Doppler repeating at {beat.value:.3g} Hz, but no band above the "
                         "noise to tell wings from swaying clutter")
-    if halfwidth.status == OK and MIN_WING_SPREAD_MPS <= halfwidth.value <= DRONE_SPREAD_MPS:
+    if halfwidth.status in (OK, "aliased") and MIN_WING_SPREAD_MPS <= halfwidth.value <= DRONE_SPREAD_MPS:
         return beat
     return withheld("not_applicable", f"a micro-Doppler repeating at {beat.value:.3g} Hz is no wingbeat: its "
                     f"half-width {halfwidth.value:.2g} m/s is outside the {MIN_WING_SPREAD_MPS:g}-{DRONE_SPREAD_MPS:g} "

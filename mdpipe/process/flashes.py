@@ -28,6 +28,7 @@ FOLD_SHARE = 0.7            # the folded phase histogram shifted by T*/k keeps t
 MAX_DIVISOR = 6
 MIN_EVENTS = 6
 COVERAGE_PARTS = 4          # events must fall in every quarter of the dwell
+MIN_PERIOD_CHIRPS = 4.0     # events are local maxima, at least 2 chirps apart: noise alone spaces them 2-3
 
 
 @dataclass(frozen=True)
@@ -67,7 +68,13 @@ def _pair_excess(times, lag, n_samples):
 
 def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s, noise_power):
     """Flash period of a body-free rotor echo ``micro_signal`` (noise of mean power ``noise_power``); None
-    when no periodic flashes are found."""
+    when no periodic flashes are found.
+
+    Periods under ``MIN_PERIOD_CHIRPS`` are not searched: local maxima of any fluctuating power fall every
+    2-3 chirps (an aliased wing band, its energy near PRF/2 after the difference, read as flashes every
+    2.04 chirps: a bird called a drone).
+    """
+    min_period_s = max(min_period_s, MIN_PERIOD_CHIRPS / prf_hz)
     events = flash_events(np.abs(micro_signal) ** 2, noise_power=noise_power)
     times = np.flatnonzero(events).astype(float)
     if len(times) < MIN_EVENTS or len(np.unique(times * COVERAGE_PARTS // len(events))) < COVERAGE_PARTS:
