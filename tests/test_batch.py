@@ -359,3 +359,20 @@ def test_forked_and_fork_server_workers_give_the_same_outputs(tmp_path, monkeypa
                           if p.is_file() and p.suffix in (".csv", ".png")}
     assert len(outputs["fork"]) == 2 * 4  # a table and three figures each
     assert outputs["fork"] == outputs["forkserver"]
+
+
+def test_gather_reads_published_tables_and_errors_in_one_walk(tmp_path):
+    """Tables and error files in nested folders, in path order; nothing inside a temporary folder (a capture
+    being published) or named as a temporary file."""
+    out = tmp_path / "out"
+    for relative, text in (("b/b.features.csv", "file,class\nb.h5,bird\n"),
+                           ("a/x/a.features.csv", "file,class,extra\na.h5,drone,1\n"),
+                           (".mdpipe-partial-c.abc/c.features.csv", "file,class\nc.h5,none\n"),
+                           ("d/.mdpipe-partial-d.features.csv.k2", "file,class\nd.h5,none\n"),
+                           ("e/e.error.txt", "e.h5\te.h5: not HDF5\n")):
+        (out / relative).parent.mkdir(parents=True, exist_ok=True)
+        (out / relative).write_text(text)
+    columns, rows, errors = tables.gather(out)
+    assert columns == ["file", "class", "extra"]
+    assert [row["file"] for row in rows] == ["a.h5", "b.h5"]
+    assert errors == [("e.h5", "e.h5: not HDF5")]

@@ -219,13 +219,14 @@ def gather(folder):
         (capture, one-line error) per ``*.error.txt``.
     """
     columns, rows = {}, []
-    for path in _published(folder, FEATURES_SUFFIX):
+    tables, failures = _published(folder, FEATURES_SUFFIX, ERROR_SUFFIX)
+    for path in tables:
         with open(path, newline="", encoding="utf-8") as fh:
             reader = csv.DictReader(fh)
             columns.update(dict.fromkeys(reader.fieldnames or ()))
             rows.extend(reader)
     errors = []
-    for path in _published(folder, ERROR_SUFFIX):
+    for path in failures:
         with open(path, encoding="utf-8", errors="replace") as fh:
             errors.append(tuple((fh.readline().rstrip("\n").split("\t", 1) + [""])[:2]))
     return list(columns), rows, errors
@@ -269,10 +270,20 @@ def frame(columns, rows):
     return table.where(table.notna() & table.ne(""), None).apply(_typed)
 
 
-def _published(folder, suffix):
-    """Files ending in ``suffix`` under ``folder``, outside temporary folders, sorted."""
-    return [p for p in sorted(Path(folder).rglob(f"*{suffix}"))
-            if not any(part.startswith(PARTIAL_PREFIX) for part in p.relative_to(folder).parts)]
+def _published(folder, *suffixes):
+    """Per suffix, the files under ``folder`` whose names end in it, outside temporary folders, sorted (one
+    walk of the tree for all)."""
+    found = [[] for _ in suffixes]
+    for root, dirs, files in os.walk(folder):
+        dirs[:] = [d for d in dirs if not d.startswith(PARTIAL_PREFIX)]
+        for name in files:
+            if name.startswith(PARTIAL_PREFIX):
+                continue
+            for i, suffix in enumerate(suffixes):
+                if name.endswith(suffix):
+                    found[i].append(Path(root) / name)
+                    break
+    return [sorted(paths) for paths in found]
 
 
 MAX_DECIMALS = 6
