@@ -151,6 +151,10 @@ class RadarParams:
         """Unambiguous Doppler span ``1 / Tp`` (from ``-1/(2 Tp)`` to ``+1/(2 Tp)``)."""
         return self.prf_hz
 
+    def aliases(self, low_hz, high_hz):
+        """Whether a Doppler extent ``[low_hz, high_hz]`` leaves the unambiguous span (it then folds)."""
+        return bool(high_hz > self.doppler_span_hz / 2 or low_hz < -self.doppler_span_hz / 2)
+
     @property
     def velocity_span_mps(self):
         """Unambiguous range-rate span, ``lambda / (2 Tp)``."""

@@ -58,7 +58,7 @@ def scene_warnings(scene):
     warnings = []
     for index, target, _, body_doppler, micro_hz in _tracks(scene):
         low, high = body_doppler.min() - micro_hz, body_doppler.max() + micro_hz
-        if high > half_span or low < -half_span:
+        if radar.aliases(low, high):
             warnings.append(
                 f"targets[{index}] ({target.name}): Doppler reaches {low:.4g} .. {high:.4g} Hz, beyond the "
                 f"unambiguous +-{half_span:.4g} Hz (PRF {radar.prf_hz:.4g} Hz): its micro-Doppler aliases")

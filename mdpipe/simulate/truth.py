@@ -50,7 +50,6 @@ def expected_features(scene, plans, *, powers_v2=None, sigma_v=0.0):
     ``sigma_v`` the noise standard deviation, for the per-target SNRs.
     """
     radar, n_chirps = scene.radar.params, scene.radar.n_chirps
-    half_span = 0.5 * radar.doppler_span_hz
     targets = []
     for index, plan in enumerate(plans):
         target = plan.target
@@ -65,7 +64,7 @@ def expected_features(scene, plans, *, powers_v2=None, sigma_v=0.0):
         entry.update(kind_entries)
         if "doppler_extent_hz" in kind_entries:
             low, high = kind_entries["doppler_extent_hz"]
-            entry["aliased"] = bool(high > half_span or low < -half_span)
+            entry["aliased"] = radar.aliases(low, high)
         targets.append(entry)
     return {
         "radar": {"wavelength_m": radar.wavelength_m, "range_bin_m": radar.range_bin_m,
