@@ -22,6 +22,11 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 import hostile  # noqa: E402
 
+# cases that are also memory plans (PLAN_CASES): class, builder, extra process options
+N4096_ZERO_PAD_16 = ("N=4096, --zero-pad 16", hostile.n4096, ["--zero-pad", "16"])
+N32768 = ("N=32768", hostile.n32768, [])
+CH64 = ("64 channels x 2048", hostile.ch64, [])
+
 CASES = [  # class, builder, extra process options
     ("external link", hostile.external_link, []),
     ("soft link dangling", hostile.soft_link_dangling, []),
@@ -53,10 +58,10 @@ CASES = [  # class, builder, extra process options
     ("all 7", hostile.constant_value, []),
     ("fill value only", hostile.fill_value_only, []),
     ("path is a FIFO", hostile.path_is_fifo, []),
-    ("N=4096, --zero-pad 16", hostile.n4096, ["--zero-pad", "16"]),
-    ("N=32768", hostile.n32768, []),
+    N4096_ZERO_PAD_16,
+    N32768,
     ("2048 channels", hostile.ch2048, []),
-    ("64 channels x 2048", hostile.ch64, []),
+    CH64,
 ]
 
 
@@ -89,10 +94,7 @@ def run(args, *, timeout_s, limit_bytes):
     return code, seconds, usage.ru_maxrss / 1024, ("[traceback] " if traceback else "") + lines[-1][:150]
 
 
-PLAN_CASES = [("N=4096, --zero-pad 16", hostile.n4096, ["--zero-pad", "16"]),
-              ("N=4096", hostile.n4096, []),
-              ("N=32768", hostile.n32768, []),
-              ("64 channels x 2048", hostile.ch64, [])]
+PLAN_CASES = [N4096_ZERO_PAD_16, ("N=4096", hostile.n4096, []), N32768, CH64]
 
 
 def plan_table(args, mdpipe, tmp):
