@@ -47,6 +47,7 @@ MAX_ROTORS = 8
 SUBLINE_Z = 5.0              # imbalance sub-lines: z of their mean score over the half-way positions
 MAX_BLADES = 6
 PATTERN_MARGIN = 1.0         # every N-th line of a turn comb stronger by this (log(1 + SNR)): ~4 dB and more
+EDGE_SHARE = 0.02            # a spacing this close to its search window's edge is not the comb's (it lies beyond)
 PARITY_SHARE = 0.5           # odd N: contrast at odd multiples of f_chop below this share of the even ones'
 
 
@@ -148,27 +149,41 @@ class _Candidate:
     orders: int
 
 
-def _best(lines, grid, *, half_width_hz, limit, min_orders=None):
+def _best(lines, grid, *, half_width_hz, limit):
     """The spacing of ``grid`` with the largest contrast (None when no spacing has enough lines)."""
-    values, t, orders = comb_statistics(lines, grid, half_width_hz=half_width_hz, limit=limit, min_orders=min_orders)
+    values, t, orders = comb_statistics(lines, grid, half_width_hz=half_width_hz, limit=limit)
     if not np.any(np.isfinite(values)):
         return None
     i = int(np.nanargmax(values))
     return _Candidate(float(grid[i]), float(values[i]), float(t[i]), int(orders[i]))
 
 
-def _search(lines, low_hz, high_hz, *, half_width_hz, max_points=MAX_GRID_POINTS, min_orders=None):
-    """Best spacing in ``[low_hz, high_hz]``: a grid fine enough for the top line, then refined around the best.
-    ``min_orders``: see :func:`comb_statistics`."""
-    limit = int(min(MAX_FINE_HARMONICS, max(MIN_HARMONICS, np.floor(half_width_hz / high_hz))))
+def _search(lines, low_hz, high_hz, *, half_width_hz, max_points=MAX_GRID_POINTS, max_orders=MAX_FINE_HARMONICS):
+    """Best spacing in ``[low_hz, high_hz]``: a grid fine enough for the top line, then refined around the best;
+    scored on the orders in the band, at most ``max_orders``."""
+    limit = int(min(max_orders, max(MIN_HARMONICS, np.floor(half_width_hz / high_hz))))
     step = max(lines.resolution_hz / (4 * limit), (high_hz - low_hz) / max_points)
-    best = _best(lines, np.arange(low_hz, high_hz + step, step), half_width_hz=half_width_hz, limit=limit,
-                 min_orders=min_orders)
+    best = _best(lines, np.arange(low_hz, high_hz + step, step), half_width_hz=half_width_hz, limit=limit)
     while best is not None and step > lines.resolution_hz / (4 * max(best.orders, 1)):
         low_hz, high_hz = best.spacing_hz - 2 * step, best.spacing_hz + 2 * step
         step = max(lines.resolution_hz / (4 * max(best.orders, 1)), (high_hz - low_hz) / max_points)
-        best = _best(lines, np.arange(low_hz, high_hz + step, step), half_width_hz=half_width_hz, limit=limit,
-                     min_orders=min_orders)
+        best = _best(lines, np.arange(low_hz, high_hz + step, step), half_width_hz=half_width_hz, limit=limit)
+    return best
+
+
+def _held_search(lines, low_hz, high_hz, *, half_width_hz):
+    """:func:`_search` on the orders where the comb holds: the extent (``MAX_COARSE_HARMONICS`` orders and up)
+    of the best t at the centre, then at the spacing found (one fixed extent for every spacing compared:
+    fewer, stronger low orders would otherwise favour a spacing that misses the higher ones)."""
+    spacing_hz = 0.5 * (low_hz + high_hz)
+    best = None
+    for _ in range(2):
+        extent = int(comb_statistics(lines, spacing_hz, half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS,
+                                     min_orders=MAX_COARSE_HARMONICS)[2][0])
+        best = _search(lines, low_hz, high_hz, half_width_hz=half_width_hz, max_orders=max(extent, MIN_HARMONICS))
+        if best is None or min(best.spacing_hz - low_hz, high_hz - best.spacing_hz) < EDGE_SHARE * (high_hz - low_hz):
+            return None  # the best at the window's edge: the comb lies beyond it, if anywhere
+        spacing_hz = best.spacing_hz
     return best
 
 
@@ -227,17 +242,20 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
     if lines is None:
         lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
     width = coarse.resolution_hz / MIN_HARMONICS
-    first, extent = _search(lines, guess - width, guess + width, half_width_hz=half_width_hz), None
+    search = _search
+    first = search(lines, guess - width, guess + width, half_width_hz=half_width_hz)
     if first is None or first.t < COMB_T:  # the comb may hold to fewer orders than the band has (rotors apart)
-        extent = MAX_COARSE_HARMONICS
-        first = _search(lines, guess - width, guess + width, half_width_hz=half_width_hz, min_orders=extent)
+        search = _held_search
+        first = search(lines, guess - width, guess + width, half_width_hz=half_width_hz)
     if first is None or first.t < COMB_T:
         return None
     found = [first]
     while len(found) < MAX_ROTORS:
-        lines = lines.without(found[-1].spacing_hz, np.arange(1, found[-1].orders + 1))
-        best = _search(lines, first.spacing_hz * (1 - ROTOR_SPREAD), first.spacing_hz * (1 + ROTOR_SPREAD),
-                       half_width_hz=half_width_hz, min_orders=extent)
+        # every line of the comb goes, also beyond the orders it was scored on (their smear is no new rotor)
+        lines = lines.without(found[-1].spacing_hz, _orders(found[-1].spacing_hz, half_width_hz, MAX_FINE_HARMONICS)
+                              if search is _held_search else np.arange(1, found[-1].orders + 1))
+        best = search(lines, first.spacing_hz * (1 - ROTOR_SPREAD), first.spacing_hz * (1 + ROTOR_SPREAD),
+                      half_width_hz=half_width_hz)
         if best is None or best.t < COMB_T or best.contrast < ROTOR_SHARE * first.contrast:
             break
         found.append(best)
