@@ -23,7 +23,7 @@ from mdpipe.physics import rotor
 from mdpipe.simulate.targets import module_of, target_echo
 from mdpipe.simulate.targets.bird import wing_speed_max_mps
 
-FEATURES = ("rotation_rate_hz", "blade_length_m", "wingbeat_freq_hz", "body_velocity_mps")
+FEATURES = ("chopping_freq_hz", "rotation_rate_hz", "blade_length_m", "wingbeat_freq_hz", "body_velocity_mps")
 TOLERANCE = 0.10             # a confident value more than 10 % off is wrong
 VELOCITY_FLOOR_MPS = 1.0     # body velocity error is relative to max(|v|, 1 m/s): 0.1 m/s near hover
 LINE_SNR_DB = 13.0           # a spectral line is detectable: Pfa 1e-5 per bin needs 10.6 dB, + ~2.5 dB for Pd 0.9
@@ -77,9 +77,21 @@ class Physics:
         return max(self.micro_line_snr_db, self.body_line_snr_db) >= LINE_SNR_DB
 
     @property
+    def chopping_freq_hz(self):
+        """Mean chopping frequency ``N |f_rot|``, the truth of ``chopping_freq_hz`` (Hz)."""
+        return self.n_blades * self.rotation_rate_hz if self.rotor_rates_hz else float("nan")
+
+    @property
     def rotation_rate_hz(self):
         """Mean rotor rate, the truth of ``rotation_rate_hz`` (rev/s)."""
         return float(np.mean(self.rotor_rates_hz)) if self.rotor_rates_hz else float("nan")
+
+
+def chopping_estimable(p):
+    """Chopping frequency ``N f_rot``: as the rotation rate (:func:`rotation_estimable`), whatever the blade
+    count. Returns ``(estimable, reason)``."""
+    ok, reason = rotation_estimable(p)
+    return (True, "") if reason == "blades_unknown" else (ok, reason)
 
 
 def rotation_estimable(p):
@@ -163,13 +175,13 @@ def body_velocity_estimable(p):
     return True, ""
 
 
-ESTIMABILITY = {"rotation_rate_hz": rotation_estimable, "blade_length_m": blade_length_estimable,
+ESTIMABILITY = {"chopping_freq_hz": chopping_estimable, "rotation_rate_hz": rotation_estimable, "blade_length_m": blade_length_estimable,
                 "wingbeat_freq_hz": wingbeat_estimable, "body_velocity_mps": body_velocity_estimable}
 
 
 def truth_value(p, feature):
     """The true value of ``feature`` for target ``p`` (NaN where it has none)."""
-    return {"rotation_rate_hz": p.rotation_rate_hz, "blade_length_m": p.blade_length_m,
+    return {"chopping_freq_hz": p.chopping_freq_hz, "rotation_rate_hz": p.rotation_rate_hz, "blade_length_m": p.blade_length_m,
             "wingbeat_freq_hz": p.wingbeat_hz, "body_velocity_mps": p.body_velocity_mps}[feature]
 
 

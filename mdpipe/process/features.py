@@ -356,15 +356,26 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     if ambiguity is not None and comb is None:
         note = f"rotation not estimable: {ambiguity}"
         return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
-    chopping_hz, measured_n = None, None
+    chopping_hz, measured_n, flashes_only = None, None, False
     if comb is not None:
         chopping_hz, measured_n = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
                                                band_hz=count_band_hz, n_blades=n_blades)
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
         ratio = timed_hz / centre
-        if aliased and abs(ratio / 2 - 1) <= AGREEMENT:  # odd N: the flash rate is twice the chopping frequency
-            timed_hz, ratio = timed_hz / 2, ratio / 2
+        if aliased and abs(ratio / 2 - 1) <= AGREEMENT:
+            # the flash times twice the comb: an odd N flashes twice per chopping period (the comb is the
+            # chopping), or the comb is the turn rate of an even N with one blade differing (the flash times are)
+            known = n_blades if n_blades is not None else measured_n
+            if known is None:
+                note = (f"rotation not estimable: the flash times say {timed_hz:.4g} Hz and the line comb {centre:.4g} "
+                        "Hz: an odd blade count flashes twice per chopping period, an even one with a blade differing "
+                        "lines its turn rate; the blade count tells which (give --blades)")
+                return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+            if known % 2:
+                timed_hz, ratio = timed_hz / 2, ratio / 2
+            else:
+                chopping_hz, ratio = np.array([timed_hz]), 1.0
         if abs(ratio - 1) <= AGREEMENT:
             if len(chopping_hz) == 1:
                 chopping_hz = np.array([timed_hz])
@@ -386,6 +397,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         # flash times give the flash rate: 2N flashes a turn for an odd N given, N for an even one
         odd_given = aliased and n_blades is not None and n_blades % 2 == 1
         chopping_hz = np.array([timed_hz / 2 if odd_given else timed_hz])
+        flashes_only = aliased
     if chopping_hz is None:
         if slowest_hz > combs.MIN_CHOP_HZ:
             note = (f"rotation not estimable: no periodic blade flashes above {slowest_hz:.3g} Hz (a dwell of "
@@ -398,13 +410,22 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         note = (f"rotation not estimable: a comb at {np.median(chopping_hz):.4g} Hz in a micro-Doppler only "
                 f"{halfwidth_mps:.2g} m/s wide is no rotor (blades turning that fast reach >= {fastest_mps:.2g} m/s)")
         return Rotation(withheld("not_rotor", note), withheld("not_rotor", note))
-    chopping = Measured(float(np.median(chopping_hz)))
+    chopping_value = float(np.median(chopping_hz))
     parity = None if aliased else combs.odd_blades(micro, float(chopping_hz[0]), prf_hz=prf_hz,
                                                    half_width_hz=count_band_hz)
     blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades)
     if conflict:
-        return Rotation(chopping, withheld("blade_conflict", f"rotation not estimable: {conflict}"),
+        note = f"chopping frequency and rotation not estimable: {conflict}"
+        return Rotation(Measured(chopping_value, "blade_conflict", note), withheld("blade_conflict", note),
                         n_blades=blades, n_blades_source=source)
+    chopping = Measured(chopping_value)
+    if source == "assumed" and flashes_only:
+        chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes an even blade count "
+                            f"(an odd one flashes twice per chopping period: {chopping_value / 2:.4g} Hz; give --blades)")
+    elif source == "assumed" and parity:
+        chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes equal blades of an odd "
+                            f"count (an even count with one blade differing lines its turn rate in this comb: the "
+                            f"chopping would be {2 * chopping_value:.4g} Hz or more; give --blades)")
     rates = tuple(sorted(float(rotor.rotation_rate_from_chopping_hz(c, n_blades=blades)) for c in chopping_hz))
     rate = float(np.median(rates))
     if source == "assumed":
@@ -602,7 +623,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     window, hop = display_window_s(row, params)
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
     row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
-    notes = [m.note for m in (body.velocity, band.halfwidth, bandwidth, turn.rate, tip, length, beat)
+    notes = [m.note for m in (body.velocity, band.halfwidth, bandwidth, turn.chopping, turn.rate, tip, length, beat)
              if m.note and (m.status != OK or m is body.velocity)]
     notes = list(dict.fromkeys(notes))  # one sentence once (blade length and its tip share theirs)
     notes.extend(display_adjustments(params, shown, prf_hz=prf_hz, dwell_s=dwell_s))

@@ -112,4 +112,8 @@ def _fold_share(times, period, divisor):
     bins = max(divisor, int(round(period)))
     histogram = np.bincount(np.floor((times % period) / period * bins).astype(int) % bins, minlength=bins)
     histogram = moving_average(histogram.astype(float), 3, mode="wrap")
-    return float(np.dot(histogram, np.roll(histogram, int(round(bins / divisor)))) / np.dot(histogram, histogram))
+    histogram = histogram - histogram.mean()
+    energy = np.dot(histogram, histogram)
+    if energy <= 0:
+        return 0.0
+    return float(np.dot(histogram, np.roll(histogram, int(round(bins / divisor)))) / energy)
