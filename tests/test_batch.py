@@ -340,23 +340,40 @@ def test_a_forked_worker_ends_on_sigterm_whatever_handler_it_inherited():
         signal.signal(signal.SIGTERM, previous)
 
 
+FORKED_RUN = """
+import sys
+from pathlib import Path
+from mdpipe.batch import runner, unit
+from mdpipe.params import FigureParams, ProcessParams
+out, names = sys.argv[1], sys.argv[2:]
+print(runner._context([]).get_start_method())
+jobs = [unit.Job(name, Path(name).stem, out, ProcessParams(), {"frame_counter": "auto", "overrides": {}},
+                 figures=FigureParams()) for name in names]
+print(" ".join(o.status for o in runner.run(jobs, workers=2)))
+"""
+
+
 def test_forked_and_fork_server_workers_give_the_same_outputs(tmp_path, monkeypatch):
-    """Workers are forked from a process with no other thread, else started by a fork server; both ways
-    publish the same bytes (tables and figures)."""
+    """Workers are forked from a process with no other thread (a fresh interpreter here: the test runner may
+    hold threads), else started by a fork server; both ways publish the same bytes (tables and figures)."""
+    import subprocess
+    import sys
+
     from mdpipe.batch import runner
     from mdpipe.params import FigureParams, ProcessParams
 
-    names = ("phantom4_xband.h5", "gull_flyby.h5")
-    outputs = {}
-    for threads, start in ((1, "fork"), (2, "forkserver")):
-        monkeypatch.setattr(runner.threading, "active_count", lambda: threads)
-        assert runner._context([]).get_start_method() == start
-        out = tmp_path / start
-        jobs = [unit.Job(str(SAMPLES / name), Path(name).stem, str(out), ProcessParams(),
-                         {"frame_counter": "auto", "overrides": {}}, figures=FigureParams()) for name in names]
-        assert [o.status for o in runner.run(jobs, workers=2)] == ["done", "done"]
-        outputs[start] = {p.relative_to(out).as_posix(): p.read_bytes() for p in out.rglob("*")
-                          if p.is_file() and p.suffix in (".csv", ".png")}
+    names = [str(SAMPLES / name) for name in ("phantom4_xband.h5", "gull_flyby.h5")]
+    forked = subprocess.run([sys.executable, "-c", FORKED_RUN, str(tmp_path / "fork"), *names], capture_output=True,
+                            text=True, timeout=300, check=True)
+    assert forked.stdout.split("\n")[:2] == ["fork", "done done"]
+    monkeypatch.setattr(runner.threading, "active_count", lambda: 2)
+    assert runner._context([]).get_start_method() == "forkserver"
+    jobs = [unit.Job(name, Path(name).stem, str(tmp_path / "forkserver"), ProcessParams(),
+                     {"frame_counter": "auto", "overrides": {}}, figures=FigureParams()) for name in names]
+    assert [o.status for o in runner.run(jobs, workers=2)] == ["done", "done"]
+    outputs = {start: {p.relative_to(tmp_path / start).as_posix(): p.read_bytes()
+                       for p in (tmp_path / start).rglob("*") if p.is_file() and p.suffix in (".csv", ".png")}
+               for start in ("fork", "forkserver")}
     assert len(outputs["fork"]) == 2 * 4  # a table and three figures each
     assert outputs["fork"] == outputs["forkserver"]
 
@@ -368,7 +385,7 @@ def test_gather_reads_published_tables_and_errors_in_one_walk(tmp_path):
     for relative, text in (("b/b.features.csv", "file,class\nb.h5,bird\n"),
                            ("a/x/a.features.csv", "file,class,extra\na.h5,drone,1\n"),
                            (".mdpipe-partial-c.abc/c.features.csv", "file,class\nc.h5,none\n"),
-                           ("d/.mdpipe-partial-d.features.csv.k2", "file,class\nd.h5,none\n"),
+                           ("d/.mdpipe-partial-d.features.csv", "file,class\nd.h5,none\n"),
                            ("e/e.error.txt", "e.h5\te.h5: not HDF5\n")):
         (out / relative).parent.mkdir(parents=True, exist_ok=True)
         (out / relative).write_text(text)
@@ -376,3 +393,25 @@ def test_gather_reads_published_tables_and_errors_in_one_walk(tmp_path):
     assert columns == ["file", "class", "extra"]
     assert [row["file"] for row in rows] == ["a.h5", "b.h5"]
     assert errors == [("e.h5", "e.h5: not HDF5")]
+
+
+def test_a_forked_worker_does_not_keep_out_locked(tmp_path):
+    """A worker forked while the run holds OUT's lock closes its copy: the lock goes with the run, not with the
+    last worker (after a killed run, a worker can live on for a while)."""
+    import fcntl
+
+    from mdpipe.batch import runner
+
+    out = tmp_path / "out"
+    pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=runner._start_worker,
+                               initargs=(os.getpid(),))
+    try:
+        with runner.locked(out):
+            assert pool.submit(os.getpid).result(timeout=30) != os.getpid()  # the worker runs
+        fd = os.open(out / runner.LOCK_NAME, os.O_RDWR)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)  # raises BlockingIOError while a worker holds it
+        finally:
+            os.close(fd)
+    finally:
+        pool.shutdown(wait=True)

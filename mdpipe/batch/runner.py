@@ -32,6 +32,8 @@ LOCK_NAME = ".mdpipe.lock"
 OUT_FILES = (manifest.MANIFEST_NAME, tables.SUMMARY_TABLE, "summary.png")  # written into OUT itself
 MANIFEST_INTERVAL_S = 1.0  # the manifest is rewritten at most this often during a run (and at its end)
 PRELOAD = ["mdpipe.batch.unit"]
+STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
+_LOCK_FDS = set()  # OUT's lock, held by this process: a forked worker closes its copy (it must not keep OUT locked)
 PRELOAD_FIGURES = ["mdpipe.report.plots"]
 
 
@@ -49,6 +51,7 @@ def locked(out_dir, on_wait=None):
     except OSError as exc:
         raise OutputFolderError(f"{out_dir}: cannot write into this output folder ({exc.strerror}); "
                                 "choose a writable --out") from None
+    _LOCK_FDS.add(fd)
     try:
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -61,6 +64,7 @@ def locked(out_dir, on_wait=None):
         os.pwrite(fd, str(os.getpid()).encode(), 0)
         yield
     finally:
+        _LOCK_FDS.discard(fd)
         os.close(fd)  # releases the lock
 
 
@@ -84,9 +88,15 @@ def _watch(parent_pid):
 
 def _start_worker(parent_pid):
     """Ctrl-C reaches the whole process group: the parent decides. SIGTERM (the pool stopping it) ends the
-    worker, whatever handler a forked worker inherited. A worker ends with the batch's process."""
+    worker, whatever handler a forked worker inherited; both were blocked from the fork until here. A
+    forked worker closes its copy of OUT's lock. A worker ends with the batch's process."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
+    for fd in list(_LOCK_FDS):
+        with contextlib.suppress(OSError):
+            os.close(fd)
+    _LOCK_FDS.clear()
     threading.Thread(target=_watch, args=(parent_pid,), daemon=True).start()
 
 
@@ -98,8 +108,9 @@ def _stop_workers(executor):
 
 def _context(preload):
     """How the pool starts its workers: forked from this process with ``preload`` imported, where that is safe
-    (Linux, and no other thread, whose locks a fork would copy held); else from a fork server that imports
-    ``preload`` once (a fresh interpreter: 0.05 s more, and the imports paid a second time)."""
+    (Linux, and no other Python thread, whose locks a fork would copy held; numpy's OpenBLAS threads
+    prepare for a fork themselves, and no capture is open in this process); else from a fork server that
+    imports ``preload`` once (a fresh interpreter: 0.05 s more, and the imports paid a second time)."""
     if sys.platform == "linux" and threading.active_count() == 1:
         for name in preload:
             importlib.import_module(name)
@@ -116,7 +127,11 @@ def _pool_round(jobs, workers, started):
                                    initargs=(os.getpid(),))
     finished, lost = False, []
     try:
-        futures = {executor.submit(unit.run, job): job for job in jobs}
+        blocked = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)  # the workers are forked in submit
+        try:
+            futures = {executor.submit(unit.run, job): job for job in jobs}
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
         started()
         for future in as_completed(futures):
             try:

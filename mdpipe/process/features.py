@@ -33,6 +33,7 @@ HIGHPASS_SHARE = 0.25        # body removal for unaliased echoes: cut below this
 EDGE_NOTCH_SHARE = 0.05      # body removal before the flash edges (which lie at the band's ends)
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
 TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
+ROTOR_EVIDENCE = ("ambiguous_period", "blade_conflict")  # rotation withheld, but blade flashes were found
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 MIN_BLADE_REACH_M = 0.005    # r cos(beta) below this is no blade: a comb that narrow is not a rotor
 BANDWIDTH_SEGMENT_S = 0.25   # the paper's rule on segments of this length (its value depends on the dwell)
@@ -319,6 +320,13 @@ def _whole_ratio(ratio):
     return 0
 
 
+def _chopping_from_flash_rate(flash_rate_hz, *, n_blades):
+    """The chopping frequency (one-element array) from an aliased echo's flash rate: 2N flashes a turn for an
+    odd N given, N for an even one (or none given: the caller marks it assumed)."""
+    odd_given = n_blades is not None and n_blades % 2 == 1
+    return np.array([flash_rate_hz / 2 if odd_given else flash_rate_hz])
+
+
 def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, halfwidth_mps,
              dense_half_width_hz, body_found=True):
     """Rotation of the rotors from their line combs and from the echo's period (or flash times when aliased).
@@ -384,7 +392,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             if len(chopping_hz) == 1:
                 chopping_hz = np.array([timed_hz * measured_n])
         elif aliased and not _whole_ratio(ratio):  # folded combs coincide by chance; flash times do not
-            chopping_hz = np.array([timed_hz])
+            chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
         else:
             note = (f"rotation not estimable: the line comb says {centre:.4g} Hz and the echo's "
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
@@ -393,11 +401,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         note = ("rotation not estimable: a folded line comb at {:.4g} Hz that the flash times do not confirm "
                 "(folded combs can coincide by chance)").format(float(np.median(chopping_hz)))
         return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
-    elif timed_hz is not None:
-        # flash times give the flash rate: 2N flashes a turn for an odd N given, N for an even one
-        odd_given = aliased and n_blades is not None and n_blades % 2 == 1
-        chopping_hz = np.array([timed_hz / 2 if odd_given else timed_hz])
-        flashes_only = aliased
+    elif timed_hz is not None and aliased:
+        chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
+    elif timed_hz is not None:  # the echo's period: one blade passage
+        chopping_hz = np.array([timed_hz])
     if chopping_hz is None:
         if slowest_hz > combs.MIN_CHOP_HZ:
             note = (f"rotation not estimable: no periodic blade flashes above {slowest_hz:.3g} Hz (a dwell of "
@@ -415,7 +422,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                                                    half_width_hz=count_band_hz)
     blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades)
     if conflict:
-        note = f"chopping frequency and rotation not estimable: {conflict}"
+        note = f"chopping frequency uncertain and rotation not estimable: {conflict}"
         return Rotation(Measured(chopping_value, "blade_conflict", note), withheld("blade_conflict", note),
                         n_blades=blades, n_blades_source=source)
     chopping = Measured(chopping_value)
@@ -597,7 +604,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,
                                       noise_power=noise_power, params=params, n_blades=turn.n_blades)
-    if turn.chopping.value is not None:
+    if turn.chopping.value is not None or turn.chopping.status in ROTOR_EVIDENCE:
         beat = withheld("not_applicable", "")  # blade flashes exclude a bird
     else:
         beat = wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
