@@ -336,7 +336,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
       flashes shorter than a chirp, seen stroboscopically).
     When both are found they must agree within ``AGREEMENT`` (the time domain then refines a single
     rotor's value: it averages over the whole dwell); a whole-number ratio is an ambiguity and
-    nothing is reported. A comb narrower in Doppler than any blade turning that fast could make
+    nothing is reported. Flash times twice a folded comb are an odd N (flashing twice per chopping
+    period) or an even N with one blade differing (the comb lines the turn rate): the blade count,
+    given or measured, tells which; without it nothing is reported. A chopping frequency that rests
+    on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade turning that fast could make
     (``r cos(beta) < MIN_BLADE_REACH_M``) is not a rotor.
     Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines,
     odd-N flash doubling), else assumed; those tests read the lines within ``dense_half_width_hz`` (the
