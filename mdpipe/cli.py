@@ -40,8 +40,23 @@ class Terminated(BaseException):
     """SIGTERM, raised where the program is so that its clean-ups run as for Ctrl-C."""
 
 
-def _terminated(signum, frame):
-    raise Terminated()
+_STOPS = []  # the stop signals received during a command
+
+
+def _stop(signum, frame):
+    """SIGINT raises KeyboardInterrupt, SIGTERM :class:`Terminated`, where the program is; both are recorded,
+    because an exception raised inside a weakref callback or a finalizer is swallowed there."""
+    _STOPS.append(signum)
+    raise KeyboardInterrupt() if signum == signal.SIGINT else Terminated()
+
+
+def _unraisable(previous):
+    """A ``sys.unraisablehook`` that keeps quiet about a stop signal's exception swallowed in a callback
+    (:func:`_stop` recorded it; the command ends with it) and passes anything else to ``previous``."""
+    def hook(unraisable):
+        if not isinstance(unraisable.exc_value, (KeyboardInterrupt, Terminated)):
+            previous(unraisable)
+    return hook
 
 
 class BladeCount(click.ParamType):
@@ -74,9 +89,15 @@ class Group(click.Group):
 
     def invoke(self, ctx):
         main_thread = threading.current_thread() is threading.main_thread()
-        previous = signal.signal(signal.SIGTERM, _terminated) if main_thread else None
+        if main_thread:
+            _STOPS.clear()
+            previous = {signum: signal.signal(signum, _stop) for signum in (signal.SIGINT, signal.SIGTERM)}
+            previous_hook, sys.unraisablehook = sys.unraisablehook, _unraisable(sys.unraisablehook)
         try:
-            return super().invoke(ctx)
+            result = super().invoke(ctx)
+            if _STOPS and main_thread:  # a stop whose exception a callback swallowed: the work went on
+                raise KeyboardInterrupt() if _STOPS[0] == signal.SIGINT else Terminated()
+            return result
         except click.UsageError as exc:
             exc.exit_code = EXIT_USAGE
             raise
@@ -95,7 +116,9 @@ class Group(click.Group):
             raise click.exceptions.Exit(EXIT_TERMINATED) from None
         finally:
             if main_thread:
-                signal.signal(signal.SIGTERM, previous)
+                for signum, handler in previous.items():
+                    signal.signal(signum, handler)
+                sys.unraisablehook = previous_hook
 
 
 def attribute_overrides(func):

@@ -328,9 +328,9 @@ def test_a_forked_worker_ends_on_sigterm_whatever_handler_it_inherited():
     """The command's SIGTERM handler raises to unwind the batch; a worker forked under it must still just end
     when the pool stops it."""
     from mdpipe.batch import runner
-    from mdpipe.cli import _terminated
+    from mdpipe.cli import _stop
 
-    previous = signal.signal(signal.SIGTERM, _terminated)
+    previous = signal.signal(signal.SIGTERM, _stop)
     try:
         with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=runner._start_worker,
                                  initargs=(os.getpid(),)) as pool:
