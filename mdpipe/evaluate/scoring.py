@@ -175,14 +175,16 @@ def body_velocity_estimable(p):
     return True, ""
 
 
-ESTIMABILITY = {"chopping_freq_hz": chopping_estimable, "rotation_rate_hz": rotation_estimable, "blade_length_m": blade_length_estimable,
-                "wingbeat_freq_hz": wingbeat_estimable, "body_velocity_mps": body_velocity_estimable}
+ESTIMABILITY = {"chopping_freq_hz": chopping_estimable, "rotation_rate_hz": rotation_estimable,
+                "blade_length_m": blade_length_estimable, "wingbeat_freq_hz": wingbeat_estimable,
+                "body_velocity_mps": body_velocity_estimable}
 
 
 def truth_value(p, feature):
     """The true value of ``feature`` for target ``p`` (NaN where it has none)."""
-    return {"chopping_freq_hz": p.chopping_freq_hz, "rotation_rate_hz": p.rotation_rate_hz, "blade_length_m": p.blade_length_m,
-            "wingbeat_freq_hz": p.wingbeat_hz, "body_velocity_mps": p.body_velocity_mps}[feature]
+    return {"chopping_freq_hz": p.chopping_freq_hz, "rotation_rate_hz": p.rotation_rate_hz,
+            "blade_length_m": p.blade_length_m, "wingbeat_freq_hz": p.wingbeat_hz,
+            "body_velocity_mps": p.body_velocity_mps}[feature]
 
 
 def relative_error(feature, truth, value):

@@ -165,8 +165,6 @@ def flash_period_s(rotation_rate_hz, *, n_blades):
     return 1.0 / (flashes_per_revolution(n_blades) * np.abs(rotation_rate_hz))
 
 
-
-
 def tip_doppler_hz(rotation_rate_hz, *, blade_length_m, wavelength_m, elevation_deg=0.0):
     """Largest micro-Doppler of a blade tip, ``2 Omega r cos(beta) / lambda`` (Eq. 6, Omega in rad/s)."""
     omega_rad_s = 2.0 * np.pi * np.abs(rotation_rate_hz)

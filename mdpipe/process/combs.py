@@ -244,21 +244,18 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
     if lines is None:
         lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
     width = coarse.resolution_hz / MIN_HARMONICS
-    search = _search
-    first = search(lines, guess - width, guess + width, half_width_hz=half_width_hz)
+    first, held = _search(lines, guess - width, guess + width, half_width_hz=half_width_hz), False
     if first is None or first.t < COMB_T:  # the comb may hold to fewer orders than the band has (rotors apart)
-        search = _held_search
-        first = search(lines, guess - width, guess + width, half_width_hz=half_width_hz)
+        first, held = _held_search(lines, guess - width, guess + width, half_width_hz=half_width_hz), True
     if first is None or first.t < COMB_T:
         return None
     found = [first]
     while len(found) < MAX_ROTORS:
         # every line of the comb goes, also beyond the orders it was scored on (their smear is no new rotor)
         lines = lines.without(found[-1].spacing_hz, _orders(found[-1].spacing_hz, half_width_hz, MAX_FINE_HARMONICS)
-                              if search is _held_search else np.arange(1, found[-1].orders + 1))
+                              if held else np.arange(1, found[-1].orders + 1))
         best = _search(lines, first.spacing_hz * (1 - ROTOR_SPREAD), first.spacing_hz * (1 + ROTOR_SPREAD),
-                       half_width_hz=half_width_hz,
-                       max_orders=first.orders if search is _held_search else MAX_FINE_HARMONICS)
+                       half_width_hz=half_width_hz, max_orders=first.orders if held else MAX_FINE_HARMONICS)
         if best is None or best.t < COMB_T or best.contrast < ROTOR_SHARE * first.contrast:
             break
         found.append(best)

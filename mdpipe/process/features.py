@@ -339,8 +339,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     nothing is reported. Flash times twice a folded comb are an odd N (flashing twice per chopping
     period) or an even N with one blade differing (the comb lines the turn rate): the blade count,
     given or measured, tells which; without it nothing is reported. A chopping frequency that rests
-    on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade turning that fast could make
-    (``r cos(beta) < MIN_BLADE_REACH_M``) is not a rotor.
+    on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade
+    turning that fast could make (``r cos(beta) < MIN_BLADE_REACH_M``) is not a rotor.
     Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines,
     odd-N flash doubling), else assumed; those tests read the lines within ``dense_half_width_hz`` (the
     band's dense part): the single lines beyond it, searched for combs, carry the
@@ -430,8 +430,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                         n_blades=blades, n_blades_source=source)
     chopping = Measured(chopping_value)
     if source == "assumed" and flashes_only:
-        chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes an even blade count "
-                            f"(an odd one flashes twice per chopping period: {chopping_value / 2:.4g} Hz; give --blades)")
+        chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes an even blade count (an "
+                            f"odd one flashes twice per chopping period: {chopping_value / 2:.4g} Hz; give --blades)")
     elif source == "assumed" and parity:
         chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes equal blades of an odd "
                             f"count (an even count with one blade differing lines its turn rate in this comb: the "

@@ -1,4 +1,5 @@
-"""Running filters, local maxima and their sub-sample refinement on 1-D signals (numpy; scipy.ndimage costs 0.25 s to import, a tenth of a capture's run).
+"""Running filters, local maxima and their sub-sample refinement on 1-D signals (numpy; scipy.ndimage costs
+0.25 s to import, a tenth of a capture's run).
 
 Edges are handled as scipy.ndimage's ``mode="nearest"`` (the edge value repeated) or ``mode="wrap"``;
 tests check the results against scipy.ndimage.

@@ -233,7 +233,7 @@ def range_figure(result, path):
     ax.set_ylabel(f"power per chirp and RX ({POWER_LABEL})")
     found = f"{len(result.detections)} target(s)" if result.detections else "no target above the threshold"
     _title(ax, f"{_name(result.path)}: range profile ({radar.range_bin_m:.3g} m bins),\nmean over the whole "
-                 f"{radar.duration_s(stats.n_chirps):.3g} s dwell; {found}", fontsize=9)
+           f"{radar.duration_s(stats.n_chirps):.3g} s dwell; {found}", fontsize=9)
     key.legend(*ax.get_legend_handles_labels(), **LEGEND)
     ax.grid(alpha=0.3)
     _arrange(fig, [(ax, key)])
@@ -278,7 +278,7 @@ def spectrogram_figure(result, path, options=FigureParams()):
         ax.set_ylabel(DOPPLER_LABEL)
         _range_rate_axis(ax, row["wavelength_m"], which="y")
         _title(ax, _panel_title(result, row, f"time: {time_text}; Hann window {spec.window_s * 1e3:.3g} ms, "
-                                  f"hop {spec.hop_s * 1e3:.3g} ms", limits_text), fontsize=8.5)
+                                f"hop {spec.hop_s * 1e3:.3g} ms", limits_text), fontsize=8.5)
         handles, labels = ax.get_legend_handles_labels()
         if handles:
             key.legend(handles, labels, **LEGEND)
@@ -331,7 +331,7 @@ def spectrum_figure(result, path, options=FigureParams()):
         _range_rate_axis(ax, row["wavelength_m"], which="x")
         state = "aliased: bandwidth withheld" if row["aliased"] else "not aliased"
         _title(ax, _panel_title(result, row, f"power spectrum over the whole {row['dwell_s']:.3g} s dwell ({state})",
-                                  limits_text), fontsize=8.5)
+                                limits_text), fontsize=8.5)
         ax.grid(alpha=0.3)
         key.legend(*ax.get_legend_handles_labels(), **LEGEND)
     _arrange(fig, [(ax, key) for ax, key, _, _ in panels], top_in=TOP_AXIS_ROOM_IN)
@@ -398,7 +398,7 @@ def summary_figure(features, path):
     ax.tick_params(labelleft=False)
     ax.set_xlabel("periodicity: chopping frequency or wingbeat (Hz)")
     _title(ax, f"{len(features)} rows from {features['file'].nunique()} captures: class regions of "
-                 "mdpipe.process.classify", fontsize=9)
+           "mdpipe.process.classify", fontsize=9)
     ax.grid(alpha=0.3, which="both")
     key.legend(*ax.get_legend_handles_labels(), **LEGEND)
     listed = ", ".join(no_target[:MAX_LISTED]) + (f" and {len(no_target) - MAX_LISTED} more" if len(no_target) > MAX_LISTED else "")
