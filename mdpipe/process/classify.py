@@ -4,7 +4,8 @@ A rotor's blade tips move at 20-150 m/s and flash 50-2000 times a second; a bird
 move at a few m/s and beat 0.3-20 times a second; a swaying branch or a leaf moves at tenths of a
 m/s. So one rule serves X band and 94 GHz:
 
-* drone: a blade line comb (a chopping frequency measured), or a micro-Doppler half-width above
+* drone: a blade line comb (a chopping frequency measured), blade flashes whose period is ambiguous
+  (``ROTOR_EVIDENCE``: the chopping withheld for that reason), or a micro-Doppler half-width above
   ``DRONE_SPREAD_MPS`` (an aliased band counts as at least half the unambiguous span);
 * bird: a wingbeat, which is only measured with a half-width between ``MIN_WING_SPREAD_MPS`` and
   ``DRONE_SPREAD_MPS`` (about the body line, or the band's centre when no body line stands out; for an
@@ -15,6 +16,7 @@ m/s. So one rule serves X band and 94 GHz:
 
 DRONE_SPREAD_MPS = 10.0
 MIN_WING_SPREAD_MPS = 1.0
+ROTOR_EVIDENCE = ("ambiguous_period", "blade_conflict")  # chopping statuses of blade flashes found, rotation withheld
 
 
 def classify(row, *, detected):
@@ -24,6 +26,8 @@ def classify(row, *, detected):
     spread = row.get("micro_doppler_halfwidth_mps")
     if row.get("chopping_freq_hz") is not None:
         return "drone", f"blade line comb at {row['chopping_freq_hz']:.1f} Hz"
+    if row.get("chopping_freq_hz_status") in ROTOR_EVIDENCE:
+        return "drone", "blade flashes, their period ambiguous"
     if spread is not None and spread > DRONE_SPREAD_MPS:
         return "drone", f"micro-Doppler half-width {spread:.1f} m/s > {DRONE_SPREAD_MPS:g} m/s"
     if row.get("wingbeat_freq_hz") is not None:  # only measured with a wing-like half-width (features.wings)

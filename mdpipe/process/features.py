@@ -13,8 +13,8 @@ import numpy as np
 from mdpipe.physics import rotor
 from mdpipe.physics.radar import range_rate_from_doppler_mps
 from mdpipe.process import combs, doppler, spectral
-from mdpipe.process.classify import DRONE_SPREAD_MPS, MIN_WING_SPREAD_MPS
-from mdpipe.process.flashes import flash_period
+from mdpipe.process.classify import DRONE_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE
+from mdpipe.process.flashes import flash_period, power_period
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeat
@@ -33,7 +33,6 @@ HIGHPASS_SHARE = 0.25        # body removal for unaliased echoes: cut below this
 EDGE_NOTCH_SHARE = 0.05      # body removal before the flash edges (which lie at the band's ends)
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
 TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
-ROTOR_EVIDENCE = ("ambiguous_period", "blade_conflict")  # rotation withheld, but blade flashes were found
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 MIN_BLADE_REACH_M = 0.005    # r cos(beta) below this is no blade: a comb that narrow is not a rotor
 BANDWIDTH_SEGMENT_S = 0.25   # the paper's rule on segments of this length (its value depends on the dwell)
@@ -312,6 +311,18 @@ def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noi
     return 1.0 / found.period_s, None
 
 
+def _power_flashes(demodulated, *, prf_hz):
+    """Rotation withheld as ``ambiguous_period`` when blade flashes show only in the echo's power (too weak for
+    flash times or line combs; :func:`mdpipe.process.flashes.power_period`), else None."""
+    found = power_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
+    if found is None:
+        return None
+    note = (f"rotation not estimable: the echo's power repeats every {found.period_s * 1e3:.3g} ms like blade "
+            "flashes, too weak for the flash times or line combs that tell the chopping frequency (the power's "
+            "period may be a whole multiple of the flash period)")
+    return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+
+
 def _whole_ratio(ratio):
     """The whole number k (2..6) with ratio ~ k or 1/k, else 0."""
     for k in range(2, 7):
@@ -409,6 +420,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     elif timed_hz is not None:  # the echo's period: one blade passage
         chopping_hz = np.array([timed_hz])
     if chopping_hz is None:
+        weak = _power_flashes(demodulated, prf_hz=prf_hz)
+        if weak is not None:
+            return weak
         if slowest_hz > combs.MIN_CHOP_HZ:
             note = (f"rotation not estimable: no periodic blade flashes above {slowest_hz:.3g} Hz (a dwell of "
                     f"{dwell_s:.3g} s holds two chopping periods only above it)")
@@ -417,6 +431,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(withheld("no_flashes", note), withheld("no_flashes", note))
     fastest_mps = 2 * np.pi * float(chopping_hz.max()) * MIN_BLADE_REACH_M
     if not aliased and halfwidth_mps is not None and halfwidth_mps < fastest_mps:
+        weak = _power_flashes(demodulated, prf_hz=prf_hz)
+        if weak is not None:
+            return weak
         note = (f"rotation not estimable: a comb at {np.median(chopping_hz):.4g} Hz in a micro-Doppler only "
                 f"{halfwidth_mps:.2g} m/s wide is no rotor (blades turning that fast reach >= {fastest_mps:.2g} m/s)")
         return Rotation(withheld("not_rotor", note), withheld("not_rotor", note))

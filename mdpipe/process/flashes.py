@@ -11,13 +11,18 @@ within 2 us of the same place). Amplitudes and complex correlations then repeat 
 period. Flash *times* do not: the events are kept as a binary train, the train's strongest period
 T* is found from its autocorrelation, and the shortest T*/k whose lag holds significantly more
 pairs of events than a random train would is the flash period.
+
+Flashes too weak to clear the event threshold one by one (a few dB above the noise at low SNR) still
+show in the autocorrelation of the echo's power, summed over every flash of the dwell
+(:func:`power_period`). That tells that blades flash, not how often: the power's period may be a
+whole multiple of the flash period (the stroboscopic amplitude pattern above repeats too).
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 from mdpipe.process.filters import moving_average
-from mdpipe.process.periodicity import find_period
+from mdpipe.process.periodicity import autocorrelation, find_period, period_from_autocorrelation
 
 EVENT_SIGMAS = 6.0          # an event stands this many robust sigmas above the median power
 FALSE_EVENTS = 0.1          # noise events expected over a whole capture
@@ -29,6 +34,11 @@ MAX_DIVISOR = 6
 MIN_EVENTS = 6
 COVERAGE_PARTS = 4          # events must fall in every quarter of the dwell
 MIN_PERIOD_CHIRPS = 4.0     # events are local maxima, at least 2 chirps apart: noise alone spaces them 2-3
+POWER_SIGMAS = 8.0          # the power's autocorrelation peak, in standard errors of a white power's (1/sqrt(n - lag))
+POWER_BASELINE = 0.1        # ... standing on an autocorrelation this close to 0: the power between flashes is uncorrelated
+POWER_PEAK_WIDTH = 0.2      # ... and no wider at half its prominence than this share of its lag: flashes are short
+MIN_SHAPE_CHIRPS = 8        # the shortest power period searched: its peak's width must be readable
+MAX_POWER_PERIOD_S = 1 / 40.0  # two blades at 20 rev/s flash 40 times a second; a wingbeat's second harmonic reaches 40 Hz
 
 
 @dataclass(frozen=True)
@@ -117,3 +127,30 @@ def _fold_share(times, period, divisor):
     if energy <= 0:
         return 0.0
     return float(np.dot(histogram, np.roll(histogram, int(round(bins / divisor)))) / energy)
+
+
+def power_period(micro_signal, *, prf_hz, min_period_s):
+    """The period of a body-free echo's power (a :class:`~mdpipe.process.periodicity.Period`) when it is blade
+    flashes', else None.
+
+    The power's autocorrelation must peak at a lag between ``min_period_s`` (and ``MIN_SHAPE_CHIRPS``) and
+    ``MAX_POWER_PERIOD_S``, recur at its multiples, and have the shape of short flashes: a narrow peak
+    (``POWER_PEAK_WIDTH``) on a baseline near zero (``POWER_BASELINE``), ``POWER_SIGMAS`` standard errors high.
+    What else repeats in a power fails the shape: two lines beating (the power a sinusoid: a peak half its
+    lag wide), a wing's echo (slowly modulated: a baseline of 0.2-0.7 at these lags).
+    """
+    power = np.abs(micro_signal) ** 2
+    r = autocorrelation(power, signed=True)
+    found = period_from_autocorrelation(r, sample_rate_hz=prf_hz, max_period_s=MAX_POWER_PERIOD_S,
+                                        min_period_s=max(min_period_s, MIN_SHAPE_CHIRPS / prf_hz))
+    if found is None:
+        return None
+    lag = found.peak_lag
+    baseline = r[lag] - found.strength
+    if found.strength * np.sqrt(len(r) - lag) < POWER_SIGMAS or baseline > POWER_BASELINE:
+        return None
+    below = np.flatnonzero(r < baseline + found.strength / 2)
+    left, right = below[below < lag], below[below > lag]
+    if len(left) == 0 or len(right) == 0 or right[0] - left[-1] - 1 > POWER_PEAK_WIDTH * lag:
+        return None
+    return found

@@ -23,20 +23,27 @@ MAX_REPEATS = 64
 
 @dataclass(frozen=True)
 class Period:
-    """A period found in a signal: ``period_s``, and ``strength`` in [0, 1] (peak prominence)."""
+    """A period found in a signal: ``period_s``, and ``strength`` in [0, 1] (peak prominence) of the
+    autocorrelation's peak at lag ``peak_lag`` (samples; the period before its refinement)."""
 
     period_s: float
     strength: float
     repeats: int
+    peak_lag: int = 0
 
 
-def autocorrelation(signal):
-    """Unbiased |autocorrelation| normalised to 1 at lag 0, lags 0 .. len - 1 (FFT based)."""
+def autocorrelation(signal, *, signed=False):
+    """Unbiased |autocorrelation| normalised to 1 at lag 0, lags 0 .. len - 1 (FFT based).
+
+    ``signed``: the real part instead of the magnitude (for a real signal, its autocorrelation as it is:
+    an envelope that dips between its peaks keeps its negative lobes instead of folding them into peaks).
+    """
     x = np.asarray(signal, dtype=np.complex128)
     x = x - x.mean()
     n = len(x)
     spectrum = np.fft.fft(x, 2 * n)
-    r = np.abs(np.fft.ifft(np.abs(spectrum) ** 2)[:n]) / np.arange(n, 0, -1)
+    products = np.fft.ifft(np.abs(spectrum) ** 2)[:n]
+    r = (products.real if signed else np.abs(products)) / np.arange(n, 0, -1)
     return r / r[0] if r[0] > 0 else r
 
 
@@ -109,4 +116,5 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
         ks.append(k)
     ks, lags = np.asarray(ks, dtype=float), np.asarray(lags)
     period_samples = float(np.dot(ks, lags) / np.dot(ks, ks))
-    return Period(period_s=period_samples / sample_rate_hz, strength=float(prominence[first]), repeats=len(ks))
+    return Period(period_s=period_samples / sample_rate_hz, strength=float(prominence[first]), repeats=len(ks),
+                  peak_lag=int(first))
