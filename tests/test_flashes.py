@@ -2,8 +2,9 @@
 evenly (rotors at slightly different rates drift through each other's phases over a dwell)."""
 
 import numpy as np
+import pytest
 
-from mdpipe.process import flashes
+from mdpipe.process import flashes, periodicity
 
 
 def test_fold_share_of_a_train_that_repeats_at_a_third_of_its_period():
@@ -20,3 +21,47 @@ def test_fold_share_of_evenly_spread_phases_is_no_support():
     times = np.sort(rng.uniform(0, 30000, size=800))
     assert flashes._fold_share(times, 140.0, 3) < 0.3
     assert flashes._fold_share(times, 140.0, 2) < 0.3
+
+
+PRF_HZ = 8000.0
+
+
+def _noise(n, seed=7):
+    rng = np.random.default_rng(seed)
+    return (rng.standard_normal(n) + 1j * rng.standard_normal(n)) / np.sqrt(2)
+
+
+def test_flashes_too_weak_for_events_show_in_the_power_autocorrelation():
+    """Flashes 0.35 chirp long every 37.3 chirps, 4.8 dB over unit noise at best (less as they fall between
+    chirps), random phases: 4 of 214 clear the event threshold (ln(8000 / 0.1) = 11.3 times the noise), too few
+    for flash times. Their power's autocorrelation at 37.3 chirps sums all of them: ~0.09 against a standard
+    error of 1 / sqrt(8000) = 0.011."""
+    n, period = 8000, 37.3
+    rng = np.random.default_rng(7)
+    noise = _noise(n)
+    signal = noise.copy()
+    for time, phase in zip(np.arange(0.3, n, period), rng.uniform(size=n)):
+        k = np.arange(int(time) - 2, int(time) + 3)
+        k = k[(k >= 0) & (k < n)]
+        signal[k] += np.sqrt(3.0) * np.exp(2j * np.pi * phase) * np.exp(-0.5 * ((k - time) / 0.35) ** 2)
+    assert flashes.flash_period(signal, prf_hz=PRF_HZ, min_period_s=1 / 3000, max_period_s=1 / 20,
+                                noise_power=1.0) is None
+    found = flashes.power_period(signal, prf_hz=PRF_HZ, min_period_s=1 / 3000)
+    assert found.period_s * PRF_HZ == pytest.approx(period, rel=0.01)
+    assert flashes.power_period(noise, prf_hz=PRF_HZ, min_period_s=1 / 3000) is None
+
+
+def test_a_power_that_repeats_smoothly_is_not_flashes():
+    """Two lines 250 Hz apart beat: their power is a sinusoid of period 4 ms, its autocorrelation peak half
+    its lag wide. A speckled echo lit half of every 10 ms (a broad pulse, as a wing's) has a peak as wide.
+    Both repeat strongly, neither as short flashes do."""
+    n = 8000
+    m = np.arange(n)
+    noise = _noise(n)
+    beat = np.exp(2j * np.pi * 300 * m / PRF_HZ) + 0.8 * np.exp(2j * np.pi * 50 * m / PRF_HZ) + 0.3 * noise
+    speckle = np.convolve(_noise(n, seed=8), np.ones(3) / np.sqrt(3), mode="same")
+    broad = 5 * speckle * np.sqrt(np.clip(np.cos(2 * np.pi * 100 * m / PRF_HZ), 0, None)) + noise
+    for signal, period_chirps in ((beat, 32), (broad, 80)):
+        r = periodicity.autocorrelation(np.abs(signal) ** 2, signed=True)
+        assert r[period_chirps] > 0.25 and r[period_chirps // 2] < -0.2  # 1 / sqrt(8000) = 0.011
+        assert flashes.power_period(signal, prf_hz=PRF_HZ, min_period_s=1 / 3000) is None
