@@ -53,8 +53,8 @@ def _parabolic_peak(r, index):
     return index + float(parabolic_offset(r[index - 1], r[index], r[index + 1]))
 
 
-def _repeats(prominence, lag, limit, untestable):
-    """The peak at ``lag`` recurs at 2 lag (and 3 lag below ``limit``) with half its prominence.
+def _repeats(prominence, lag, limit, untestable, share=REPEAT_SHARE):
+    """The peak at ``lag`` recurs at 2 lag (and 3 lag below ``limit``) with ``share`` of its prominence.
 
     ``untestable``: what to answer when 2 lag lies beyond ``limit`` (the record holds under three periods).
     """
@@ -62,7 +62,7 @@ def _repeats(prominence, lag, limit, untestable):
         if k * lag >= limit:
             return k > 2 or untestable
         half = max(2, int(0.02 * lag))  # the coarse lag is good to a sample: an offset peak nearby must not count
-        if prominence[k * lag - half:k * lag + half + 1].max() < REPEAT_SHARE * prominence[lag]:
+        if prominence[k * lag - half:k * lag + half + 1].max() < share * prominence[lag]:
             return False
     return True
 
@@ -76,14 +76,16 @@ def find_period(signal, *, sample_rate_hz, min_period_s, max_period_s):
                                        min_period_s=min_period_s, max_period_s=max_period_s)
 
 
-def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s, repeat_share=0.5):
+def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s, repeat_share=0.5,
+                                recur_share=REPEAT_SHARE):
     """The fundamental period in a normalised autocorrelation ``r`` (lag 0 first).
 
     Lags up to half the record are searched (two repeats at least). Strength is the peak's height
     above the running minimum over one shortest candidate period (a baseline that the decay of a
     broadband echo does not raise). Repeats at k T are looked for, and the period refined on them,
     at lags below ``repeat_share`` of the record (an unbiased autocorrelation at lag L rests on
-    ``n - L`` products). With ``repeat_share`` above 1/2 a period whose double lies beyond it (two
+    ``n - L`` products); a peak at 2T (and 3T) must stand with ``recur_share`` of T's prominence.
+    With ``repeat_share`` above 1/2 a period whose double lies beyond it (two
     or fewer periods in the record) is kept with ``repeats = 1``: the caller decides on its strength.
     """
     lo = max(2, int(np.ceil(min_period_s * sample_rate_hz)))
@@ -99,7 +101,7 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     heights = prominence[peaks]
     limit = int(repeat_share * len(r))
     first = next((p for p in peaks[heights >= FUNDAMENTAL_SHARE * heights.max()]
-                  if _repeats(prominence, p, limit, untestable=repeat_share > 0.5)), None)
+                  if _repeats(prominence, p, limit, untestable=repeat_share > 0.5, share=recur_share)), None)
     if first is None:
         return None
     coarse = _parabolic_peak(r, first)
