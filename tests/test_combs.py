@@ -38,3 +38,39 @@ def test_a_comb_holding_to_eight_orders_is_scored_on_them():
     _, t_held, k_held = combs.comb_statistics(lines, 100.0, half_width_hz=1550.0, limit=64, min_orders=3)
     assert k_all[0] == 15 and k_held[0] == 8
     assert t_held[0] > 3 * t_all[0]
+
+
+def _lines_at(spacing_hz, scores, lines):
+    """``lines`` with the line at +-k spacing_hz set to ``scores[k - 1]``."""
+    score = lines.score.copy()
+    for k, value in enumerate(scores, start=1):
+        for sign in (1, -1):
+            score[int(round(sign * k * spacing_hz / lines.resolution_hz)) % len(score)] = value
+    return combs.LineSpectrum(score=score, prf_hz=lines.prf_hz)
+
+
+def _candidate(lines, spacing_hz, half_width_hz):
+    contrast, t, orders = combs.comb_statistics(lines, spacing_hz, half_width_hz=half_width_hz, limit=64)
+    return combs._Candidate(spacing_hz, float(contrast[0]), float(t[0]), int(orders[0]))
+
+
+def test_a_multiple_whose_lines_are_strongest_gives_way_to_the_comb():
+    """Lines at every +-k 127 Hz (k <= 25), every fifth twice as strong (a blade's line weights rise and fall
+    along the band): the comb at 635 Hz stands out on its own (t >= COMB_T), but sums a fifth of the lines
+    the 127 Hz comb sums; the comb is 127 Hz."""
+    lines = _lines_at(127.0, [6.0 if k % 5 == 0 else 3.0 for k in range(1, 26)], spectrum(n=8192, prf_hz=8192.0))
+    multiple = _candidate(lines, 635.0, 3200.0)
+    assert multiple.t >= combs.COMB_T
+    found = combs._fundamental_comb(lines, multiple, half_width_hz=3200.0, min_hz=20.0)
+    assert found.spacing_hz == pytest.approx(127.0, abs=lines.resolution_hz / 4)
+
+
+@pytest.mark.parametrize("between", [None, 1.2])
+def test_a_comb_stays_itself_against_its_sub_multiples(between):
+    """Equal lines every 200 Hz: its sub-multiples 100, 66.7 .. Hz sum the same lines (and empty positions), the
+    largest spacing is kept. So with weaker lines half-way (a blade differing: a fifth as far above the noise
+    floor of 0.6 as the comb's); lines half-way as strong as the comb's would make it the turn rate's."""
+    scores = [4.0] * 15 if between is None else [4.0 if k % 2 == 0 else between for k in range(1, 31)]
+    lines = _lines_at(200.0 if between is None else 100.0, scores, spectrum(n=8192, prf_hz=8192.0))
+    comb = _candidate(lines, 200.0, 3100.0)
+    assert combs._fundamental_comb(lines, comb, half_width_hz=3100.0, min_hz=20.0) is comb
