@@ -271,3 +271,16 @@ def test_chopping_not_read_at_a_multiple_of_the_comb(tmp_path):
     row = process_capture(path, ProcessParams(elevation_deg=45.7593)).rows[0]
     assert row["class"] == "drone" and row["chopping_freq_hz_status"] == "ok"
     assert row["chopping_freq_hz"] == pytest.approx(2 * np.mean(np.abs(rates)), rel=0.005)
+
+
+@pytest.mark.parametrize("tip_reflectivity", [1.0, 0.5, 0.2])
+def test_blade_length_of_tapered_blades(tmp_path, tip_reflectivity):
+    """Blades whose reflectivity falls linearly from the root to ``tip_reflectivity`` at the tip, at 24 GHz (the
+    tips 120 rotation harmonics out, 15 bins of a flash frame): a flash's spectrum falls along its plateau
+    likewise, and a quarter of the plateau's median power lay inside the tips (r -3.5 % at 0.5, -10 % at 0.2). The
+    edge is read against the plateau's trend extrapolated to it: r within 3 %."""
+    target = drone((80.0, -80.0, 80.0, -80.0), blade_length_m=0.12)
+    target["rotors"] |= {"blade_profile": "tapered", "tip_reflectivity": tip_reflectivity, "root_m": 0.01}
+    row, _ = analyse(tmp_path, K_BAND, target, n_blades=2, elevation_deg=0.0)
+    assert row["blade_length_m_status"] == "ok"
+    assert row["blade_length_m"] == pytest.approx(0.12, rel=0.03)

@@ -17,6 +17,8 @@ FILLED_FRACTION = 0.9     # a band over 90 % of the span has filled it
 HALF_AMPLITUDE_DB = 20 * np.log10(2)  # 6.02 dB: half amplitude, the edge of a rect spectrum
 FLASH_PERCENTILE = 80
 EDGE_PLATEAU_DB = 15.0    # a flash whose edges are read stands this far above the noise (at 10 dB: +4 % spread)
+EDGE_TIP_DB = 6.0        # ... and its spectrum just inside an edge this far (the quarter level 6 dB over the noise)
+TREND_SHARES = (0.3, 0.8)  # a flash's plateau trend is fitted this far out from 0 Hz towards its edge
 
 
 @dataclass(frozen=True)
@@ -70,6 +72,39 @@ def paper_extent(spectrum, *, threshold_db):
     if len(above) == 0:
         return None
     return float(spectrum.f_hz[above[0]]), float(spectrum.f_hz[above[-1]])
+
+
+def _tip_edge(column, f_hz, index, step, *, plateau, noise_level):
+    """One side's Doppler edge of a flash frame ``column``, or None; ``index`` the outermost bin at a quarter of the
+    ``plateau`` (a uniform blade's half amplitude) on the side ``step`` (-1 low, +1 high).
+
+    A tapered blade's spectrum falls along its plateau with its reflectivity: a quarter of the median then
+    lies inside the tips (-9 % for a tip reflectivity of 0.22). The side's amplitude trend, fitted between
+    ``TREND_SHARES`` of the way from 0 Hz to the edge, gives the level at the edge; the edge is where the
+    spectrum falls to a quarter of that (at most of the plateau), the two found in turn three times over.
+    Where that level is not ``EDGE_TIP_DB`` above the noise (or the side holds too few bins for a trend),
+    the plateau's quarter stands. None when the spectrum stays above the level to the span's end.
+    """
+    centre = int(np.argmin(np.abs(f_hz)))
+    amplitude = np.sqrt(np.maximum(np.nan_to_num(column), 0.0))
+    level = plateau * 10 ** (-HALF_AMPLITUDE_DB / 10)
+    edge_hz = _crossing(column, f_hz, index, step, level)
+    for _ in range(3):
+        inner = [centre + step * k for k in range(1, abs(index - centre) + 1)
+                 if TREND_SHARES[0] <= k / abs(index - centre) <= TREND_SHARES[1]]
+        if len(inner) < 4:
+            break
+        trend = np.polyfit(np.abs(f_hz[inner]), amplitude[inner], 1)
+        local = min(plateau, max(float(np.polyval(trend, abs(edge_hz))), 0.0) ** 2)
+        if local < noise_level * 10 ** (EDGE_TIP_DB / 10):
+            break  # the tips' level is lost in the noise: the plateau's quarter stands
+        level = local * 10 ** (-HALF_AMPLITUDE_DB / 10)
+        while 0 <= index + step < len(column) and np.nan_to_num(column[index + step]) >= level:
+            index += step
+        if not 0 <= index + step < len(column):
+            return None  # above the level to the span's end
+        edge_hz = _crossing(column, f_hz, index, step, level)
+    return edge_hz
 
 
 def _crossing(column, f_hz, index, step, level):
@@ -137,8 +172,12 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop
             continue
         if above[0] == 0 or above[-1] == len(f) - 1:
             continue
-        lows.append(_crossing(column, f, above[0], -1, level))
-        highs.append(_crossing(column, f, above[-1], 1, level))
+        low = _tip_edge(column, f, above[0], -1, plateau=plateau, noise_level=noise_level)
+        high = _tip_edge(column, f, above[-1], 1, plateau=plateau, noise_level=noise_level)
+        if low is None or high is None:
+            continue
+        lows.append(low)
+        highs.append(high)
     if not lows:
         return FlashEdges(None, None, used, filled)
     return FlashEdges(float(np.median(lows)), float(np.median(highs)), used, filled)
