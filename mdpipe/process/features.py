@@ -36,6 +36,8 @@ TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats th
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 MIN_BLADE_REACH_M = 0.005    # r cos(beta) below this is no blade: a comb that narrow is not a rotor
 BANDWIDTH_SEGMENT_S = 0.25   # the paper's rule on segments of this length (its value depends on the dwell)
+EDGE_BAND_EXCESS = 1.25      # the whole dwell's band beyond the flash edges by more than this is not the lines' Bessel
+                             # tails and the rotors' spread of rates (<= 1.2; in the sweep 1.28-1.71 where tips folded)
 ASSUMED_EVEN_BLADES, ASSUMED_ODD_BLADES = 2, 3
 
 # Each measured quantity and the columns derived from it, which share its status.
@@ -529,6 +531,11 @@ def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_
         note = "blade length not estimable: no flash frame with both Doppler edges inside the span"
         return withheld("no_edges", note), withheld("no_edges", note), None
     bandwidth = edges.high_hz - edges.low_hz
+    if half_width_hz > EDGE_BAND_EXCESS * bandwidth / 2:
+        note = (f"blade length not estimable: the micro-Doppler reaches {half_width_hz:.4g} Hz, "
+                f"{half_width_hz / (bandwidth / 2):.2f} times the flash edges' +-{bandwidth / 2:.4g} Hz: they are not the "
+                "tips' (tips folded about the span's ends, or lost)")
+        return withheld("edges_inside_band", note), withheld("edges_inside_band", note), None
     tip = Measured(float(bandwidth))
     gamma = bandwidth / 2 / rate.value
     min_gamma = FLASHES_PER_WINDOW * 2 * n_blades / params.edge_window_periods

@@ -26,6 +26,7 @@ STATUS_CODES = {
     "elevation": "the rotor plane is too close to face-on (|beta| > 80 deg): Eq. 6 divides by ~0",
     "few_harmonics": "the blade tips span too few rotation harmonics for the flash edges to be sharp",
     "no_edges": "no flash frame shows both Doppler edges inside the span",
+    "edges_inside_band": "the micro-Doppler reaches well beyond the flash edges: they are not the tips' (folded tips)",
     "no_body_line": "no body line stands out of the micro-Doppler",
     "body_unsteady": "the strongest line jumps between the body and rotor lines: no steady body track",
     "velocity_ambiguous": "the Doppler gives the velocity only modulo lambda PRF / 2 and the range track cannot tell which",
