@@ -7,15 +7,18 @@ m/s. So one rule serves X band and 94 GHz:
 * drone: a blade line comb (a chopping frequency measured), blade flashes whose period is ambiguous
   (``ROTOR_EVIDENCE``: the chopping withheld for that reason), or a micro-Doppler half-width above
   ``DRONE_SPREAD_MPS`` (an aliased band counts as at least half the unambiguous span);
-* bird: a wingbeat, which is only measured with a half-width between ``MIN_WING_SPREAD_MPS`` and
+* bird: a wingbeat, which is only measured with a half-width between ``MIN_WING_SPREAD_MPS`` (or
+  ``MIN_FLYING_WING_SPREAD_MPS`` for a body flying at ``MIN_FLIGHT_SPEED_MPS`` or more) and
   ``DRONE_SPREAD_MPS`` (about the body line, or the band's centre when no body line stands out; for an
   aliased band, the span's half-width, which the wings' spread exceeds);
 * none: nothing moving above the noise, or neither signature (a branch swaying in the wind repeats
-  too, but its micro-Doppler stays below ``MIN_WING_SPREAD_MPS``).
+  too, but its micro-Doppler stays below ``MIN_WING_SPREAD_MPS`` and it does not fly).
 """
 
 DRONE_SPREAD_MPS = 10.0
 MIN_WING_SPREAD_MPS = 1.0
+MIN_FLIGHT_SPEED_MPS = 2.0         # a body this fast flies: no branch (its body line stays at 0 m/s)
+MIN_FLYING_WING_SPREAD_MPS = 0.5   # ... and its wings may spread this little (beating across the line of sight)
 ROTOR_EVIDENCE = ("ambiguous_period", "blade_conflict")  # chopping statuses of blade flashes found, rotation withheld
 
 
