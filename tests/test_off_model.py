@@ -314,8 +314,9 @@ def test_a_heron_flying_along_the_line_of_sight_is_a_bird(tmp_path):
     2 m/s or more may spread its wings down to 0.5 m/s: the 2.41 Hz wingbeat within 1 %."""
     radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=345.686e-6, chirp_period_s=432.107e-6,
                  sample_rate_hz=370278.22974607017, n_samples=128, n_chirps=6064, n_channels=2)
-    heron = {"name": "heron", "type": "bird", "a1_deg": 40.8534, "a2_deg": 44.6596, "wingbeat_drift_fraction": 0.0019007,
-             "wing_roughness": 0.103853, "wingbeat_hz": 2.4101, "upper_arm_m": 0.438128, "forearm_m": 0.43015,
+    heron = {"name": "heron", "type": "bird", "a1_deg": 40.8534, "a2_deg": 44.6596,
+             "wingbeat_drift_fraction": 0.0019007, "wing_roughness": 0.103853, "wingbeat_hz": 2.4101,
+             "upper_arm_m": 0.438128, "forearm_m": 0.43015,
              "body_rcs_m2": 0.0190927, "wing_rcs_m2": 0.010577,
              "motion": {"position_m": [45.9832, -1.25964, 12.6633], "velocity_mps": [8.17597, 0.469366, 0.0]}}
     path, _ = simulate(tmp_path, scene_mapping(radar, [heron], noise={"moving_snr_db": -8.99213}, seed=1300344300))

@@ -196,7 +196,8 @@ def _fundamental_comb(lines, comb, *, half_width_hz, min_hz):
     orders: a multiple 5 f whose few lines happen to be the strongest (a blade's line weights rise and
     fall along the band) can then win. On the whole dwell the summed-contrast rule of the coarse search
     is applied again among ``f / m``, each scored over one Doppler extent: the largest spacing whose comb
-    (``t >= COMB_T``) sums ``MULTIPLE_SHARE`` of the best sum is the comb (a K-band quadrotor at 63.6 rev/s read 635 Hz for 127).
+    (``t >= COMB_T``) sums ``MULTIPLE_SHARE`` of the best sum is the comb (a K-band quadrotor at 63.6 rev/s
+    read 635 Hz for 127).
     """
     spacings = comb.spacing_hz / np.arange(1, MAX_BLADES + 1)
     spacings = spacings[spacings >= min_hz]

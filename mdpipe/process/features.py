@@ -534,8 +534,8 @@ def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_
     bandwidth = edges.high_hz - edges.low_hz
     if half_width_hz > EDGE_BAND_EXCESS * bandwidth / 2:
         note = (f"blade length not estimable: the micro-Doppler reaches {half_width_hz:.4g} Hz, "
-                f"{half_width_hz / (bandwidth / 2):.2f} times the flash edges' +-{bandwidth / 2:.4g} Hz: they are not the "
-                "tips' (tips folded about the span's ends, or lost)")
+                f"{half_width_hz / (bandwidth / 2):.2f} times the flash edges' +-{bandwidth / 2:.4g} Hz: they are "
+                "not the tips' (tips folded about the span's ends, or lost)")
         return withheld("edges_inside_band", note), withheld("edges_inside_band", note), None
     tip = Measured(float(bandwidth))
     gamma = bandwidth / 2 / rate.value

@@ -35,12 +35,14 @@ MIN_EVENTS = 6
 COVERAGE_PARTS = 4          # events must fall in every quarter of the dwell
 MIN_PERIOD_CHIRPS = 4.0     # events are local maxima, at least 2 chirps apart: noise alone spaces them 2-3
 POWER_SIGMAS = 8.0          # the power's autocorrelation peak, in standard errors of a white power's (1/sqrt(n - lag))
-POWER_BASELINE = 0.1        # ... standing on an autocorrelation this close to 0: the power between flashes is uncorrelated
+POWER_BASELINE = 0.1        # ... standing on an autocorrelation this close to 0 (the power between flashes is
+                            # uncorrelated)
 POWER_PEAK_WIDTH = 0.2      # ... and no wider at half its prominence than this share of its lag: flashes are short
 POWER_RECUR_SHARE = 0.25    # ... recurring at 2T and 3T with this share of its prominence: six flash trains whose
                             # phases drift apart smear the recurrences (0.76, 0.42, 0.27 for a 77 GHz hexarotor)
 MIN_SHAPE_CHIRPS = 8        # the shortest power period searched: its peak's width must be readable
-MAX_POWER_PERIOD_S = 1 / 40.0  # two blades at 20 rev/s flash 40 times a second; a wingbeat's second harmonic reaches 40 Hz
+MAX_POWER_PERIOD_S = 1 / 40.0  # two blades at 20 rev/s flash 40 times a second; a wingbeat's second harmonic
+                               # reaches 40 Hz
 
 
 @dataclass(frozen=True)
@@ -136,8 +138,9 @@ def power_period(micro_signal, *, prf_hz, min_period_s):
     flashes', else None.
 
     The power's autocorrelation must peak at a lag between ``min_period_s`` (and ``MIN_SHAPE_CHIRPS``) and
-    ``MAX_POWER_PERIOD_S``, recur at its multiples (``POWER_RECUR_SHARE``), and have the shape of short flashes: a narrow peak
-    (``POWER_PEAK_WIDTH``) on a baseline near zero (``POWER_BASELINE``), ``POWER_SIGMAS`` standard errors high.
+    ``MAX_POWER_PERIOD_S``, recur at its multiples (``POWER_RECUR_SHARE``), and have the shape of short
+    flashes: a narrow peak (``POWER_PEAK_WIDTH``) on a baseline near zero (``POWER_BASELINE``),
+    ``POWER_SIGMAS`` standard errors high.
     What else repeats in a power fails the shape: two lines beating (the power a sinusoid: a peak half its
     lag wide), a wing's echo (slowly modulated: a baseline of 0.2-0.7 at these lags).
     """

@@ -85,8 +85,8 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     broadband echo does not raise). Repeats at k T are looked for, and the period refined on them,
     at lags below ``repeat_share`` of the record (an unbiased autocorrelation at lag L rests on
     ``n - L`` products); a peak at 2T (and 3T) must stand with ``recur_share`` of T's prominence.
-    With ``repeat_share`` above 1/2 a period whose double lies beyond it (two
-    or fewer periods in the record) is kept with ``repeats = 1``: the caller decides on its strength.
+    With ``repeat_share`` above 1/2 a period whose double lies beyond it (two or fewer periods in the
+    record) is kept with ``repeats = 1``: the caller decides on its strength.
     """
     lo = max(2, int(np.ceil(min_period_s * sample_rate_hz)))
     hi = min(int(max_period_s * sample_rate_hz), len(r) // 2)

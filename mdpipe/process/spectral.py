@@ -17,7 +17,7 @@ FILLED_FRACTION = 0.9     # a band over 90 % of the span has filled it
 HALF_AMPLITUDE_DB = 20 * np.log10(2)  # 6.02 dB: half amplitude, the edge of a rect spectrum
 FLASH_PERCENTILE = 80
 EDGE_PLATEAU_DB = 15.0    # a flash whose edges are read stands this far above the noise (at 10 dB: +4 % spread)
-EDGE_TIP_DB = 6.0        # ... and its spectrum just inside an edge this far (the quarter level 6 dB over the noise)
+EDGE_TIP_DB = 6.0         # ... its spectrum's trend at an edge this far, to read the edge against the trend
 TREND_SHARES = (0.3, 0.8)  # a flash's plateau trend is fitted this far out from 0 Hz towards its edge
 
 
@@ -83,7 +83,8 @@ def _tip_edge(column, f_hz, index, step, *, plateau, noise_level):
     ``TREND_SHARES`` of the way from 0 Hz to the edge, gives the level at the edge; the edge is where the
     spectrum falls to a quarter of that (at most of the plateau), the two found in turn three times over.
     Where that level is not ``EDGE_TIP_DB`` above the noise (or the side holds too few bins for a trend),
-    the plateau's quarter stands. None when the spectrum stays above the level to the span's end.
+    the edge found so far stands (at first, the plateau's quarter). None when the spectrum stays above
+    the level to the span's end.
     """
     centre = int(np.argmin(np.abs(f_hz)))
     amplitude = np.sqrt(np.maximum(np.nan_to_num(column), 0.0))
@@ -97,7 +98,7 @@ def _tip_edge(column, f_hz, index, step, *, plateau, noise_level):
         trend = np.polyfit(np.abs(f_hz[inner]), amplitude[inner], 1)
         local = min(plateau, max(float(np.polyval(trend, abs(edge_hz))), 0.0) ** 2)
         if local < noise_level * 10 ** (EDGE_TIP_DB / 10):
-            break  # the tips' level is lost in the noise: the plateau's quarter stands
+            break  # the tips' level is lost in the noise
         level = local * 10 ** (-HALF_AMPLITUDE_DB / 10)
         while 0 <= index + step < len(column) and np.nan_to_num(column[index + step]) >= level:
             index += step
