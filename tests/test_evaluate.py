@@ -19,7 +19,7 @@ DRONE = scoring.Physics(kind="multirotor", expected_class="drone", dwell_s=0.1, 
                         micro_line_snr_db=30.0, body_line_snr_db=40.0, rotor_rates_hz=(80.0,) * 4, n_blades=2,
                         blade_length_m=0.12, elevation_deg=10.0, blades_given=True, elevation_given=True,
                         tip_doppler_hz=4.0 * np.pi * 80 * 0.12 * np.cos(np.deg2rad(10)) / 0.0306,
-                        has_body=True, body_velocity_mps=2.0)
+                        has_body=True, body_velocity_mps=2.0, body_doppler_max_hz=2 * 2.0 / 0.0306)
 
 
 def test_a_value_12_percent_off_is_confidently_wrong_and_8_percent_is_right():
@@ -53,6 +53,11 @@ def test_body_velocity_needs_a_detectable_unaliased_body_line():
         == (False, "aliased")
     assert scoring.body_velocity_estimable(dataclasses.replace(DRONE, body_line_snr_db=10.0)) == (False, "below_noise")
     assert scoring.body_velocity_estimable(dataclasses.replace(DRONE, has_body=False)) == (False, "no_body")
+    # hovering without sway: the body is one more static scatterer of its bin, removed with the clutter; a sway
+    # that moves its Doppler a tenth of a bin (1 Hz x 0.1 s) over the dwell is motion
+    still = dataclasses.replace(DRONE, body_velocity_mps=0.0, body_doppler_max_hz=0.0)
+    assert scoring.body_velocity_estimable(still) == (False, "static")
+    assert scoring.body_velocity_estimable(dataclasses.replace(still, body_doppler_max_hz=1.0)) == (True, "")
 
 
 def test_body_velocity_error_is_relative_to_at_least_1_mps():
@@ -103,7 +108,7 @@ def test_body_velocity_rules():
 def test_score_row_and_coverage_arithmetic():
     bird = scoring.Physics(kind="bird", expected_class="bird", dwell_s=2.0, prf_hz=4000.0, micro_line_snr_db=20.0,
                            body_line_snr_db=30.0, wingbeat_hz=3.0, flap_run_s=2.0, has_body=True,
-                           body_velocity_mps=-5.0)
+                           body_velocity_mps=-5.0, body_doppler_max_hz=2 * 5.0 / 0.0306)
     rows = [  # 3 drones, rotation estimable in all: 1 right, 1 wrong, 1 withheld; 1 bird called a drone
         (DRONE, {"class": "drone", "rotation_rate_hz": 80.4, "body_velocity_mps": 2.05}),
         (DRONE, {"class": "drone", "rotation_rate_hz": 120.0, "body_velocity_mps": None}),

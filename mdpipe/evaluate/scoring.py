@@ -32,6 +32,7 @@ MIN_COS_ROTATION = 0.1       # rotation: |beta| <= 84 deg (at 90 deg the blades 
 MAX_BLADE_ELEVATION_DEG = 80.0
 MIN_TIP_HARMONICS = 24       # blade length: the band +-f_tip spans 24 rotation harmonics
 MIN_WINGBEATS = 2            # wingbeat: two beats in a row while flapping
+STATIC_BINS = 0.01           # body velocity: a body whose Doppler stays within this share of a bin of 0 Hz is at rest
 POWER_SAMPLES = 4096
 
 
@@ -160,14 +161,18 @@ def wingbeat_estimable(p):
 def body_velocity_estimable(p):
     """Body velocity (mean range rate): an unambiguous, detectable body Doppler line.
 
-    All of: a body scatterer exists (a drone's or bird's body RCS > 0, or a moving point); its line,
-    its power shared among the Doppler bins its track sweeps over the dwell, stands ``LINE_SNR_DB``
-    above the noise; its Doppler stays within +-PRF/2, or the range track resolves the alias (beyond
-    PRF/2 the Doppler gives the velocity only modulo the span ``lambda PRF / 2``; one range bin over the
-    dwell below a quarter span tells which alias).
+    All of: a body scatterer exists (a drone's or bird's body RCS > 0, or a moving point); it moves: its
+    Doppler leaves 0 Hz by ``STATIC_BINS`` of a Doppler bin over the dwell (a body at rest, a drone hovering
+    without sway, is one more static scatterer of its range bin: the processing removes it with the clutter
+    and nothing tells the two apart); its line, its power shared among the Doppler bins its track sweeps over
+    the dwell, stands ``LINE_SNR_DB`` above the noise; its Doppler stays within +-PRF/2, or the range track
+    resolves the alias (beyond PRF/2 the Doppler gives the velocity only modulo the span ``lambda PRF / 2``;
+    one range bin over the dwell below a quarter span tells which alias).
     """
     if not p.has_body:
         return False, "no_body"
+    if p.body_doppler_max_hz * p.dwell_s < STATIC_BINS:
+        return False, "static"
     if p.body_line_snr_db < LINE_SNR_DB:
         return False, "below_noise"
     if p.body_doppler_max_hz >= p.prf_hz / 2 and p.range_bin_m / p.dwell_s >= p.velocity_span_mps / 4:
