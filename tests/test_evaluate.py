@@ -76,7 +76,13 @@ def test_rotation_needs_a_knowable_blade_count():
     # 3 turns at 80 rev/s take 37.5 ms
     assert scoring.rotation_estimable(dataclasses.replace(DRONE, dwell_s=0.03)) == (False, "dwell_short")
     assert scoring.rotation_estimable(dataclasses.replace(DRONE, micro_line_snr_db=12.0)) == (False, "below_noise")
-    assert scoring.rotation_estimable(dataclasses.replace(DRONE, elevation_deg=87.0)) == (False, "elevation")
+    # near face-on the tips' band shrinks with cos(beta): at 87 deg it holds 1.3 chopping harmonics a side at X band
+    # (no comb to read), at 94 GHz 12 of them
+    face_on = dataclasses.replace(DRONE, elevation_deg=87.0,
+                                  tip_doppler_hz=4.0 * np.pi * 80 * 0.12 * np.cos(np.deg2rad(87)) / 0.0306)
+    assert scoring.rotation_estimable(face_on) == (False, "few_lines")
+    assert scoring.rotation_estimable(dataclasses.replace(face_on, tip_doppler_hz=face_on.tip_doppler_hz * 0.0306
+                                                          / 0.00319)) == (True, "")
 
 
 def test_blade_length_rules():

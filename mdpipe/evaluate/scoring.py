@@ -28,7 +28,7 @@ TOLERANCE = 0.10             # a confident value more than 10 % off is wrong
 VELOCITY_FLOOR_MPS = 1.0     # body velocity error is relative to max(|v|, 1 m/s): 0.1 m/s near hover
 LINE_SNR_DB = 13.0           # a spectral line is detectable: Pfa 1e-5 per bin needs 10.6 dB, + ~2.5 dB for Pd 0.9
 MIN_ROTATIONS = 3            # rotation: the dwell holds 3 turns of the slowest rotor
-MIN_COS_ROTATION = 0.1       # rotation: |beta| <= 84 deg (at 90 deg the blades move across the line of sight)
+MIN_CHOP_ORDERS = 2          # rotation: the tips' band spans 2 chopping harmonics a side (face-on, it shrinks to 0)
 MAX_BLADE_ELEVATION_DEG = 80.0
 MIN_TIP_HARMONICS = 24       # blade length: the band +-f_tip spans 24 rotation harmonics
 MIN_WINGBEATS = 2            # wingbeat: two beats in a row while flapping
@@ -43,8 +43,10 @@ class Physics:
     ``micro_line_snr_db`` is the SNR of one spectral line of the moving parts (blades, wings) after the
     range FFT (gain ``n_samples / 3``: a real IF's positive bin through a Hann window), coherent RX
     combining (``n_channels``) and the dwell (``n_chirps``), the moving parts' power shared among the
-    lines that fill their Doppler extent (see :func:`line_count`). ``body_line_snr_db`` likewise
-    for the body, its power shared among the Doppler bins its track sweeps.
+    lines that fill their Doppler extent (see :func:`line_count`). ``body_line_snr_db`` is the body
+    line's SNR in the frames a track follows it with: a line sweeping B Hz over the dwell T stays in one
+    bin of a frame sqrt(T / B) long (B T >= 1), whose SNR is the dwell's over sqrt(B T) (over the whole
+    dwell its power spreads over B T bins).
     """
 
     kind: str
@@ -99,8 +101,10 @@ def rotation_estimable(p):
     """Rotation rate: a drone whose blade flashes carry the rate unambiguously.
 
     All of: the blades' spectral lines stand ``LINE_SNR_DB`` above the noise (``micro_line_snr_db``);
-    the dwell holds ``MIN_ROTATIONS`` turns of the slowest rotor; ``|cos beta| >= MIN_COS_ROTATION``;
-    the chopping frequency ``N f_rot`` of the fastest rotor is below PRF / 2 (else the line that
+    the dwell holds ``MIN_ROTATIONS`` turns of the slowest rotor; the tips' band ``+-f_tip`` (``cos beta``
+    in it: near face-on the blades move across the line of sight) holds ``MIN_CHOP_ORDERS`` chopping
+    harmonics a side, the lines a comb is read from (2 blades of 12 cm at 80 rev/s: 1.3 at X band and
+    87 deg, 8 at 94 GHz and 88 deg); the chopping frequency ``N f_rot`` of the fastest rotor is below PRF / 2 (else the line that
     gives the rate aliases); and the blade count is knowable: given to the processing, or told by the
     echo (odd N flashes twice per blade per turn; unequal blades add lines at ``f_rot``).
     Returns ``(estimable, reason)``, reason ``""`` when estimable.
@@ -111,8 +115,8 @@ def rotation_estimable(p):
         return False, "below_noise"
     if p.dwell_s * min(p.rotor_rates_hz) < MIN_ROTATIONS:
         return False, "dwell_short"
-    if abs(np.cos(np.deg2rad(p.elevation_deg))) < MIN_COS_ROTATION:
-        return False, "elevation"
+    if p.tip_doppler_hz < MIN_CHOP_ORDERS * p.chopping_freq_hz:
+        return False, "few_lines"
     if rotor.chopping_frequency_hz(max(p.rotor_rates_hz), n_blades=p.n_blades) >= p.prf_hz / 2:
         return False, "chopping_aliased"
     if not (p.blades_given or p.n_blades % 2 == 1 or p.imbalanced):
@@ -164,8 +168,8 @@ def body_velocity_estimable(p):
     All of: a body scatterer exists (a drone's or bird's body RCS > 0, or a moving point); it moves: its
     Doppler leaves 0 Hz by ``STATIC_BINS`` of a Doppler bin over the dwell (a body at rest, a drone hovering
     without sway, is one more static scatterer of its range bin: the processing removes it with the clutter
-    and nothing tells the two apart); its line, its power shared among the Doppler bins its track sweeps over
-    the dwell, stands ``LINE_SNR_DB`` above the noise; its Doppler stays within +-PRF/2, or the range track
+    and nothing tells the two apart); its line stands ``LINE_SNR_DB`` above the noise in the frames that
+    hold its sweep to a bin (``body_line_snr_db``); its Doppler stays within +-PRF/2, or the range track
     resolves the alias (beyond PRF/2 the Doppler gives the velocity only modulo the span ``lambda PRF / 2``;
     one range bin over the dwell below a quarter span tells which alias).
     """
@@ -326,7 +330,7 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
     sweep_hz = body_doppler["max"] - body_doppler["min"]
     base.update(body_doppler_max_hz=max(abs(body_doppler["max"]), abs(body_doppler["min"])),
                 has_body=body_rcs > 0, body_velocity_mps=float(expected["range_rate_mps"]["mean"]),
-                body_line_snr_db=_db(body_power / noise_v2 * gain / max(1.0, sweep_hz * dwell_s)))
+                body_line_snr_db=_db(body_power / noise_v2 * gain / np.sqrt(max(1.0, sweep_hz * dwell_s))))
     if kind == "multirotor":
         rotors = target.rotors
         rates = tuple(expected["rotor_rates_hz"])
