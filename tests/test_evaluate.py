@@ -54,10 +54,10 @@ def test_body_velocity_needs_a_detectable_unaliased_body_line():
     assert scoring.body_velocity_estimable(dataclasses.replace(DRONE, body_line_snr_db=10.0)) == (False, "below_noise")
     assert scoring.body_velocity_estimable(dataclasses.replace(DRONE, has_body=False)) == (False, "no_body")
     # hovering without sway: the body is one more static scatterer of its bin, removed with the clutter; a sway
-    # that moves its Doppler a tenth of a bin (1 Hz x 0.1 s) over the dwell is motion
-    still = dataclasses.replace(DRONE, body_velocity_mps=0.0, body_doppler_max_hz=0.0)
+    # whose echo the mean removal keeps 1 % of (-20 dB) leaves its line 20 dB above the noise
+    still = dataclasses.replace(DRONE, body_velocity_mps=0.0, body_doppler_max_hz=0.0, body_kept_share=0.0)
     assert scoring.body_velocity_estimable(still) == (False, "static")
-    assert scoring.body_velocity_estimable(dataclasses.replace(still, body_doppler_max_hz=1.0)) == (True, "")
+    assert scoring.body_velocity_estimable(dataclasses.replace(still, body_kept_share=0.01)) == (True, "")
 
 
 def test_body_velocity_error_is_relative_to_at_least_1_mps():
@@ -141,9 +141,12 @@ def test_score_row_and_coverage_arithmetic():
 
 
 def test_line_snr_of_a_point_matches_the_measured_doppler_line(tmp_path):
-    """A still point at snr_db = 0: after a Hann range FFT (gain N/3 on a real IF) and an n_chirps DFT its
+    """A point receding by 3 Doppler bins (0.459 m/s: off 0 Hz, where the mean removal would take its line; on a
+    bin, not between two) at snr_db = 0: after a Hann range FFT (gain N/3 on a real IF) and an n_chirps DFT its
     Doppler line stands 10 log10(64 / 3 x 4000) = 49.3 dB above the mean noise bin."""
-    mapping = scene_mapping(XBAND, [{"type": "point", "rcs_m2": 1.0, "motion": {"position_m": [30.0, 0.0, 0.0]}}],
+    speed_mps = 3 * (299792458.0 / 9.8e9) / (2 * 4000 * 25e-6)
+    mapping = scene_mapping(XBAND, [{"type": "point", "rcs_m2": 1.0, "motion": {"position_m": [30.0, 0.0, 0.0],
+                                                                               "velocity_mps": [speed_mps, 0.0, 0.0]}}],
                             noise={"snr_db": 0.0}, seed=4)
     path, truth = simulate(tmp_path, mapping)
     scene = scene_from_mapping(mapping)
@@ -239,3 +242,20 @@ def test_evaluate_rejects_a_bad_sweep(tmp_path):
     result = CliRunner().invoke(main, ["evaluate", str(bad), "--out", str(tmp_path / "out")])
     assert result.exit_code == 2 and "Traceback" not in result.output
     assert "targets[0].wobble_hz: unknown key" in result.output
+
+
+def test_kept_share_of_a_body_under_mean_removal():
+    """At rest: nothing kept. Moving 2 m/s for 1 s at X band (130 wavelengths), sampled every lambda / 2 exactly
+    (a sampled phase that aliases to a constant): all kept, the phase integrated along each piece. Swaying
+    A sin(2 pi t / P) over whole periods: 1 - J0(4 pi A / lambda)^2."""
+    from scipy.special import j0
+
+    lam = 0.0306
+    t = np.linspace(0.0, 1.0, 101)
+    assert scoring.kept_share(t, np.full(101, 30.0), wavelength_m=lam) == pytest.approx(0.0, abs=1e-12)
+    assert scoring.kept_share(t, 30.0 + (lam / 2) * 100 * t, wavelength_m=lam) == pytest.approx(1.0, abs=1e-3)
+    fine = np.linspace(0.0, 2.0, 4001)
+    amplitude = 0.004
+    sway = 30.0 + amplitude * np.sin(2 * np.pi * fine / 1.0)
+    assert scoring.kept_share(fine, sway, wavelength_m=lam) == pytest.approx(1 - j0(4 * np.pi * amplitude / lam) ** 2,
+                                                                              abs=1e-4)

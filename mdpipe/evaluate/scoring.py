@@ -28,11 +28,11 @@ TOLERANCE = 0.10             # a confident value more than 10 % off is wrong
 VELOCITY_FLOOR_MPS = 1.0     # body velocity error is relative to max(|v|, 1 m/s): 0.1 m/s near hover
 LINE_SNR_DB = 13.0           # a spectral line is detectable: Pfa 1e-5 per bin needs 10.6 dB, + ~2.5 dB for Pd 0.9
 MIN_ROTATIONS = 3            # rotation: the dwell holds 3 turns of the slowest rotor
-MIN_CHOP_ORDERS = 2          # rotation: the tips' band spans 2 chopping harmonics a side (face-on, it shrinks to 0)
+MIN_CHOP_ORDERS = 3          # rotation: the tips' band spans 3 chopping harmonics a side (a comb's least; face-on: 0)
 MAX_BLADE_ELEVATION_DEG = 80.0
 MIN_TIP_HARMONICS = 24       # blade length: the band +-f_tip spans 24 rotation harmonics
 MIN_WINGBEATS = 2            # wingbeat: two beats in a row while flapping
-STATIC_BINS = 0.01           # body velocity: a body whose Doppler stays within this share of a bin of 0 Hz is at rest
+STATIC_SHARE = 1e-3          # body velocity: a body whose echo the dwell's mean removal keeps less of is at rest
 POWER_SAMPLES = 4096
 
 
@@ -46,7 +46,8 @@ class Physics:
     lines that fill their Doppler extent (see :func:`line_count`). ``body_line_snr_db`` is the body
     line's SNR in the frames a track follows it with: a line sweeping B Hz over the dwell T stays in one
     bin of a frame sqrt(T / B) long (B T >= 1), whose SNR is the dwell's over sqrt(B T) (over the whole
-    dwell its power spreads over B T bins).
+    dwell its power spreads over B T bins); of the body's power only ``body_kept_share`` counts, what the
+    removal of the dwell's mean (static clutter) keeps (:func:`kept_share`).
     """
 
     kind: str
@@ -64,6 +65,7 @@ class Physics:
     imbalanced: bool = False
     tip_doppler_hz: float = 0.0
     body_doppler_max_hz: float = 0.0
+    body_kept_share: float = 1.0
     wingbeat_hz: float = float("nan")
     flap_run_s: float = 0.0
     has_body: bool = False
@@ -103,10 +105,11 @@ def rotation_estimable(p):
     All of: the blades' spectral lines stand ``LINE_SNR_DB`` above the noise (``micro_line_snr_db``);
     the dwell holds ``MIN_ROTATIONS`` turns of the slowest rotor; the tips' band ``+-f_tip`` (``cos beta``
     in it: near face-on the blades move across the line of sight) holds ``MIN_CHOP_ORDERS`` chopping
-    harmonics a side, the lines a comb is read from (2 blades of 12 cm at 80 rev/s: 1.3 at X band and
-    87 deg, 8 at 94 GHz and 88 deg); the chopping frequency ``N f_rot`` of the fastest rotor is below PRF / 2 (else the line that
-    gives the rate aliases); and the blade count is knowable: given to the processing, or told by the
-    echo (odd N flashes twice per blade per turn; unequal blades add lines at ``f_rot``).
+    harmonics a side, the least a comb is read from (2 blades of 12 cm at 80 rev/s: 1.3 at X band and
+    87 deg, 8 at 94 GHz and 88 deg); the chopping frequency ``N f_rot`` of the fastest rotor is below
+    PRF / 2 (else the line that gives the rate aliases); and the blade count is knowable: given to the
+    processing, or told by the echo (odd N flashes twice per blade per turn; unequal blades add lines at
+    ``f_rot``).
     Returns ``(estimable, reason)``, reason ``""`` when estimable.
     """
     if p.kind != "multirotor":
@@ -165,17 +168,17 @@ def wingbeat_estimable(p):
 def body_velocity_estimable(p):
     """Body velocity (mean range rate): an unambiguous, detectable body Doppler line.
 
-    All of: a body scatterer exists (a drone's or bird's body RCS > 0, or a moving point); it moves: its
-    Doppler leaves 0 Hz by ``STATIC_BINS`` of a Doppler bin over the dwell (a body at rest, a drone hovering
-    without sway, is one more static scatterer of its range bin: the processing removes it with the clutter
-    and nothing tells the two apart); its line stands ``LINE_SNR_DB`` above the noise in the frames that
+    All of: a body scatterer exists (a drone's or bird's body RCS > 0, or a moving point); it moves: the
+    processing's removal of the dwell's mean keeps ``STATIC_SHARE`` of its echo (``body_kept_share``; a body
+    at rest, a drone hovering without sway, is one more static scatterer of its range bin: removed with the
+    clutter, and nothing tells the two apart); its line stands ``LINE_SNR_DB`` above the noise in the frames that
     hold its sweep to a bin (``body_line_snr_db``); its Doppler stays within +-PRF/2, or the range track
     resolves the alias (beyond PRF/2 the Doppler gives the velocity only modulo the span ``lambda PRF / 2``;
     one range bin over the dwell below a quarter span tells which alias).
     """
     if not p.has_body:
         return False, "no_body"
-    if p.body_doppler_max_hz * p.dwell_s < STATIC_BINS:
+    if p.body_kept_share < STATIC_SHARE:
         return False, "static"
     if p.body_line_snr_db < LINE_SNR_DB:
         return False, "below_noise"
@@ -288,6 +291,21 @@ def echo_power_v2(target, *, f0_hz, dwell_s, seed=0, index=0):
     return 0.5 * float(np.mean(np.abs(target_echo(target, realization, t_s, f0_hz=f0_hz).signal) ** 2))
 
 
+def kept_share(t_s, range_m, *, wavelength_m):
+    """The share of a body's echo power that removing its mean over the dwell keeps: ``1 - |<exp(j phi)>|^2``,
+    ``phi = 4 pi r / lambda`` along the range track (samples ``t_s``, ``range_m``), integrated exactly over each
+    linear piece (no aliasing of the phase between samples). 0 for a body at rest, ~1 once it moves a
+    wavelength."""
+    t_s, phase = np.asarray(t_s, dtype=float), 4 * np.pi * np.asarray(range_m, dtype=float) / wavelength_m
+    if len(t_s) < 2 or t_s[-1] <= t_s[0]:
+        return 0.0
+    step = np.diff(phase)
+    small = np.abs(step) < 1e-9
+    piece = np.where(small, 1.0, np.expm1(1j * step) / np.where(small, 1.0, 1j * step))
+    mean = np.sum(np.exp(1j * phase[:-1]) * piece * np.diff(t_s)) / (t_s[-1] - t_s[0])
+    return float(max(0.0, 1.0 - abs(mean) ** 2))
+
+
 def line_count(extent_hz, spacing_hz, *, prf_hz):
     """Lines of spacing ``spacing_hz`` in a Doppler extent (folded into the PRF when wider), at least 1."""
     return max(1.0, min(extent_hz, prf_hz) / spacing_hz)
@@ -326,16 +344,20 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
         if kind in ("multirotor", "bird") else 0.0
     body_rcs = body_rcs_m2(target)
     body_power = 0.5 * body_rcs * float(np.mean(np.asarray(expected["track"]["range_m"]) ** -4.0))
+    kept = kept_share(expected["track"]["t_s"], expected["track"]["range_m"], wavelength_m=wavelength_m)
     body_doppler = expected["body_doppler_hz"]
     sweep_hz = body_doppler["max"] - body_doppler["min"]
     base.update(body_doppler_max_hz=max(abs(body_doppler["max"]), abs(body_doppler["min"])),
                 has_body=body_rcs > 0, body_velocity_mps=float(expected["range_rate_mps"]["mean"]),
-                body_line_snr_db=_db(body_power / noise_v2 * gain / np.sqrt(max(1.0, sweep_hz * dwell_s))))
+                body_kept_share=kept,
+                body_line_snr_db=_db(kept * body_power / noise_v2 * gain / np.sqrt(max(1.0, sweep_hz * dwell_s))))
     if kind == "multirotor":
         rotors = target.rotors
         rates = tuple(expected["rotor_rates_hz"])
-        tip_hz = float(rotor.tip_doppler_hz(max(rates), blade_length_m=rotors.blade_length_m,
-                                            wavelength_m=wavelength_m, elevation_deg=target.elevation_deg))
+        # each rotor's disc seen at the drone's elevation plus its tilt (near face-on the tilt decides)
+        tip_hz = float(np.max(rotor.tip_doppler_hz(np.array(rates), blade_length_m=rotors.blade_length_m,
+                                                   wavelength_m=wavelength_m,
+                                                   elevation_deg=np.array(expected["rotor_elevations_deg"]))))
         distinct = len(np.unique(np.round(np.array(rates) * dwell_s)))  # rotors resolved in the dwell spectrum
         lines = distinct * line_count(2 * tip_hz + sweep_hz, rotors.blades * np.mean(rates), prf_hz=prf_hz)
         return Physics(**base, micro_line_snr_db=_db(micro / noise_v2 * gain / lines), rotor_rates_hz=rates,

@@ -34,7 +34,8 @@ MAX_DIVISOR = 6
 MIN_EVENTS = 6
 COVERAGE_PARTS = 4          # events must fall in every quarter of the dwell
 MIN_PERIOD_CHIRPS = 4.0     # events are local maxima, at least 2 chirps apart: noise alone spaces them 2-3
-POWER_SIGMAS = 8.0          # the power's autocorrelation peak, in standard errors of a white power's (1/sqrt(n - lag))
+POWER_SIGMAS = 6.0          # the power's autocorrelation peak over its median in the lags searched, in standard errors
+                            # of a power correlated over the lags below them (Bartlett)
 POWER_BASELINE = 0.1        # ... standing on an autocorrelation this close to 0 (the power between flashes is
                             # uncorrelated)
 POWER_PEAK_WIDTH = 0.2      # ... and no wider at half its prominence than this share of its lag: flashes are short
@@ -140,20 +141,27 @@ def power_period(micro_signal, *, prf_hz, min_period_s):
     The power's autocorrelation must peak at a lag between ``min_period_s`` (and ``MIN_SHAPE_CHIRPS``) and
     ``MAX_POWER_PERIOD_S``, recur at its multiples (``POWER_RECUR_SHARE``), and have the shape of short
     flashes: a narrow peak (``POWER_PEAK_WIDTH``) on a baseline near zero (``POWER_BASELINE``),
-    ``POWER_SIGMAS`` standard errors high.
+    ``POWER_SIGMAS`` standard errors above the median of the lags searched. The standard error is
+    Bartlett's for a power correlated over the lags below them, ``sqrt((1 + 2 sum r_k^2) / (n - lag))``:
+    a speckled echo (a Doppler band a few hundred Hz wide) has a power correlated over a few chirps, whose
+    autocorrelation strays twice as far as a white power's (its peaks reached 8-10 white standard errors).
     What else repeats in a power fails the shape: two lines beating (the power a sinusoid: a peak half its
     lag wide), a wing's echo (slowly modulated: a baseline of 0.2-0.7 at these lags).
     """
     power = np.abs(micro_signal) ** 2
+    if not np.var(power) > 1e-12 * np.mean(power) ** 2:
+        return None  # a constant power (its rounding would be normalised to unit variance)
     r = autocorrelation(power, signed=True)
+    min_period_s = max(min_period_s, MIN_SHAPE_CHIRPS / prf_hz)
     found = period_from_autocorrelation(r, sample_rate_hz=prf_hz, max_period_s=MAX_POWER_PERIOD_S,
-                                        min_period_s=max(min_period_s, MIN_SHAPE_CHIRPS / prf_hz),
-                                        recur_share=POWER_RECUR_SHARE)
+                                        min_period_s=min_period_s, recur_share=POWER_RECUR_SHARE)
     if found is None:
         return None
     lag = found.peak_lag
     baseline = r[lag] - found.strength
-    if found.strength * np.sqrt(len(r) - lag) < POWER_SIGMAS or baseline > POWER_BASELINE:
+    lo, hi = int(np.ceil(min_period_s * prf_hz)), min(int(MAX_POWER_PERIOD_S * prf_hz), len(r) // 2)
+    standard_error = np.sqrt((1 + 2 * np.sum(r[1:lo] ** 2)) / (len(r) - lag))
+    if (r[lag] - np.median(r[lo:hi])) / standard_error < POWER_SIGMAS or baseline > POWER_BASELINE:
         return None
     below = np.flatnonzero(r < baseline + found.strength / 2)
     left, right = below[below < lag], below[below > lag]

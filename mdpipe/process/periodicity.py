@@ -23,8 +23,9 @@ MAX_REPEATS = 64
 
 @dataclass(frozen=True)
 class Period:
-    """A period found in a signal: ``period_s``, and ``strength`` in [0, 1] (peak prominence) of the
-    autocorrelation's peak at lag ``peak_lag`` (samples; the period before its refinement)."""
+    """A period found in a signal: ``period_s``, and ``strength`` (peak prominence; within [0, 1] for a
+    magnitude autocorrelation, up to 2 for a signed one) of the autocorrelation's peak at lag ``peak_lag``
+    (samples; the period before its refinement)."""
 
     period_s: float
     strength: float

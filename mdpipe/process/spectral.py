@@ -100,6 +100,8 @@ def _tip_edge(column, f_hz, index, step, *, plateau, noise_level):
         if local < noise_level * 10 ** (EDGE_TIP_DB / 10):
             break  # the tips' level is lost in the noise
         level = local * 10 ** (-HALF_AMPLITUDE_DB / 10)
+        while index != centre and np.nan_to_num(column[index]) < level:  # the level rose above the last bin
+            index -= step
         while 0 <= index + step < len(column) and np.nan_to_num(column[index + step]) >= level:
             index += step
         if not 0 <= index + step < len(column):
