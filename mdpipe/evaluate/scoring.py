@@ -169,12 +169,12 @@ def body_velocity_estimable(p):
     """Body velocity (mean range rate): an unambiguous, detectable body Doppler line.
 
     All of: a body scatterer exists (a drone's or bird's body RCS > 0, or a moving point); it moves: the
-    processing's removal of the dwell's mean keeps ``STATIC_SHARE`` of its echo (``body_kept_share``; a body
-    at rest, a drone hovering without sway, is one more static scatterer of its range bin: removed with the
-    clutter, and nothing tells the two apart); its line stands ``LINE_SNR_DB`` above the noise in the frames that
-    hold its sweep to a bin (``body_line_snr_db``); its Doppler stays within +-PRF/2, or the range track
-    resolves the alias (beyond PRF/2 the Doppler gives the velocity only modulo the span ``lambda PRF / 2``;
-    one range bin over the dwell below a quarter span tells which alias).
+    processing's removal of the dwell's mean keeps ``STATIC_SHARE`` of its echo (``body_kept_share``; a
+    body at rest, a drone hovering without sway, is one more static scatterer of its range bin: removed
+    with the clutter, and nothing tells the two apart); its line stands ``LINE_SNR_DB`` above the noise in
+    the frames that hold its sweep to a bin (``body_line_snr_db``); its Doppler stays within +-PRF/2, or
+    the range track resolves the alias (beyond PRF/2 the Doppler gives the velocity only modulo the span
+    ``lambda PRF / 2``; one range bin over the dwell below a quarter span tells which alias).
     """
     if not p.has_body:
         return False, "no_body"
@@ -293,8 +293,8 @@ def echo_power_v2(target, *, f0_hz, dwell_s, seed=0, index=0):
 
 def kept_share(t_s, range_m, *, wavelength_m):
     """The share of a body's echo power that removing its mean over the dwell keeps: ``1 - |<exp(j phi)>|^2``,
-    ``phi = 4 pi r / lambda`` along the range track (samples ``t_s``, ``range_m``), integrated exactly over each
-    linear piece (no aliasing of the phase between samples). 0 for a body at rest, ~1 once it moves a
+    ``phi = 4 pi r / lambda`` along the range track (samples ``t_s``, ``range_m``), integrated exactly over
+    each linear piece (no aliasing of the phase between samples). 0 for a body at rest, ~1 once it moves a
     wavelength."""
     t_s, phase = np.asarray(t_s, dtype=float), 4 * np.pi * np.asarray(range_m, dtype=float) / wavelength_m
     if len(t_s) < 2 or t_s[-1] <= t_s[0]:
@@ -350,7 +350,8 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
     base.update(body_doppler_max_hz=max(abs(body_doppler["max"]), abs(body_doppler["min"])),
                 has_body=body_rcs > 0, body_velocity_mps=float(expected["range_rate_mps"]["mean"]),
                 body_kept_share=kept,
-                body_line_snr_db=_db(kept * body_power / noise_v2 * gain / np.sqrt(max(1.0, sweep_hz * dwell_s))))
+                body_line_snr_db=_db(kept * body_power / noise_v2 * gain
+                                     / np.sqrt(max(1.0, sweep_hz * dwell_s))))
     if kind == "multirotor":
         rotors = target.rotors
         rates = tuple(expected["rotor_rates_hz"])
