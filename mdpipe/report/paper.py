@@ -72,8 +72,9 @@ EXPLANATIONS = {
         "are point scatterers along rigid segments here, not the ellipsoids of Chen's model, so their echo "
         "strengths, and the spectrum's reach above the threshold, differ."),
     "wingbeat period (s)": (
-        "A 0.5 Hz wingbeat gives five periods in 10 s; with a fly-by's sweep mdpipe does not find it in (b) and "
-        "(e) and says so (null)."),
+        "A 0.5 Hz wingbeat gives five periods in 10 s: mdpipe does not find it in (a), (b) and (e) and says so "
+        "(null). In (a), the bird all but still (0.1 m/s), the pattern repeats every 2.00 s but with a strength "
+        "of 0.199, under the 0.2 a wingbeat needs; in (b) and (e) a fly-by's sweep blurs it."),
 }
 CONFIG4_NOTE = ("Config 4 (beta = 60 deg): Eq. 6 halves the bandwidth (cos 60 = 0.5); the paper's 6.75 kHz is "
                 "90 % of its beta = 0 value, so its table does not follow its own cos(beta).")
