@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from mdpipe.process.filters import moving_average
-from mdpipe.process.periodicity import autocorrelation, find_period, period_from_autocorrelation
+from mdpipe.process.periodicity import autocorrelation, find_period, lag_range, period_from_autocorrelation
 
 EVENT_SIGMAS = 6.0          # an event stands this many robust sigmas above the median power
 FALSE_EVENTS = 0.1          # noise events expected over a whole capture
@@ -159,7 +159,7 @@ def power_period(micro_signal, *, prf_hz, min_period_s):
         return None
     lag = found.peak_lag
     baseline = r[lag] - found.strength
-    lo, hi = int(np.ceil(min_period_s * prf_hz)), min(int(MAX_POWER_PERIOD_S * prf_hz), len(r) // 2)
+    lo, hi = lag_range(len(r), sample_rate_hz=prf_hz, min_period_s=min_period_s, max_period_s=MAX_POWER_PERIOD_S)
     standard_error = np.sqrt((1 + 2 * np.sum(r[1:lo] ** 2)) / (len(r) - lag))
     if (r[lag] - np.median(r[lo:hi])) / standard_error < POWER_SIGMAS or baseline > POWER_BASELINE:
         return None

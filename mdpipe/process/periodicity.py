@@ -77,6 +77,12 @@ def find_period(signal, *, sample_rate_hz, min_period_s, max_period_s):
                                        min_period_s=min_period_s, max_period_s=max_period_s)
 
 
+def lag_range(n, *, sample_rate_hz, min_period_s, max_period_s):
+    """The lags ``lo .. hi - 1`` (samples) searched for a period in an autocorrelation of ``n`` lags: from
+    ``min_period_s`` (2 at least) to ``max_period_s`` or half the record (two repeats at least)."""
+    return max(2, int(np.ceil(min_period_s * sample_rate_hz))), min(int(max_period_s * sample_rate_hz), n // 2)
+
+
 def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s, repeat_share=0.5,
                                 recur_share=REPEAT_SHARE):
     """The fundamental period in a normalised autocorrelation ``r`` (lag 0 first).
@@ -89,8 +95,7 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     With ``repeat_share`` above 1/2 a period whose double lies beyond it (two or fewer periods in the
     record) is kept with ``repeats = 1``: the caller decides on its strength.
     """
-    lo = max(2, int(np.ceil(min_period_s * sample_rate_hz)))
-    hi = min(int(max_period_s * sample_rate_hz), len(r) // 2)
+    lo, hi = lag_range(len(r), sample_rate_hz=sample_rate_hz, min_period_s=min_period_s, max_period_s=max_period_s)
     if hi <= lo + 2:
         return None
     baseline = running_min(r, 2 * lo + 1)
