@@ -48,8 +48,35 @@ def test_flashes_too_weak_for_events_show_in_the_power_autocorrelation():
     assert flashes.flash_period(signal, prf_hz=PRF_HZ, min_period_s=1 / 3000, max_period_s=1 / 20,
                                 noise_power=1.0) is None
     found = flashes.power_period(signal, prf_hz=PRF_HZ, min_period_s=1 / 3000)
-    assert found.period_s * PRF_HZ == pytest.approx(period, rel=0.01)
+    assert found.period_s * PRF_HZ == pytest.approx(period, rel=0.01) and found.whole
     assert flashes.power_period(noise, prf_hz=PRF_HZ, min_period_s=1 / 3000) is None
+
+
+def _flash_train(n, period, *, amplitudes, width_chirps, start=0.3, seed=7):
+    """Unit noise plus Gaussian flashes every ``period`` chirps, the k-th of amplitude ``amplitudes[k % len]``,
+    random phases."""
+    rng = np.random.default_rng(seed)
+    signal = _noise(n, seed)
+    for index, (time, phase) in enumerate(zip(np.arange(start, n, period), rng.uniform(size=n))):
+        k = np.arange(int(time) - 3, int(time) + 4)
+        k = k[(k >= 0) & (k < n)]
+        signal[k] += (amplitudes[index % len(amplitudes)] * np.exp(2j * np.pi * phase)
+                      * np.exp(-0.5 * ((k - time) / width_chirps) ** 2))
+    return signal
+
+
+@pytest.mark.parametrize("amplitudes, width_chirps", [((3.0,), 0.35), ((3.0, 1.5), 1.0)])
+def test_a_power_period_that_is_a_multiple_of_the_flashes_is_not_whole(amplitudes, width_chirps):
+    """Flashes every 37.3 chirps, 19.5 dB over the noise at best. Flashes 0.35 chirp long are sampled where they
+    fall between chirps, a pattern that all but repeats every third flash (3 x 0.3 chirp from whole): the
+    power's period is read at 3 x 37.3 chirps. Two blades, one of half the other's amplitude: the power repeats
+    once a turn, 2 x 37.3 chirps. Either way the lags a third or a half of it repeat too (the flashes do): the
+    period is not whole, and no chopping frequency is read from it."""
+    n, period = 8000, 37.3
+    found = flashes.power_period(_flash_train(n, period, amplitudes=amplitudes, width_chirps=width_chirps),
+                                 prf_hz=PRF_HZ, min_period_s=1 / 3000)
+    assert found.period_s * PRF_HZ == pytest.approx((4 - len(amplitudes)) * period, rel=0.01)
+    assert not found.whole
 
 
 def test_a_power_that_repeats_smoothly_is_not_flashes():

@@ -232,7 +232,9 @@ def test_flashes_too_weak_one_by_one_still_tell_a_drone(tmp_path):
     flash times, combs nor the echo's period give a chopping frequency
     (old code: `none`, "no periodic blade flashes"). Summed over the dwell's ~800 flashes, the power's
     autocorrelation peaks at the flash period 4.18 ms (1 / (2 x 119.7 rev/s), 35 chirps) many standard errors
-    high: a drone, its rotation withheld as ambiguous (the power's period may be a multiple of the flashes')."""
+    high: a drone. With N = 2 given (even: one flash per chopping period) and a power that repeats whole, its
+    period is the chopping period: the rotation within 2 % of the rotors' median rate. Without the blade count,
+    rotation is withheld as ambiguous (an odd N's power repeats twice per chopping period)."""
     radar = dict(f_start_hz=76.5e9, f_stop_hz=76.75e9, ramp_up_s=95.5906e-6, chirp_period_s=119.488e-6,
                  sample_rate_hz=669521.8992662459, n_samples=64, n_chirps=6966, n_channels=1)
     quad = {"name": "quad", "type": "multirotor", "elevation_deg": 51.4581, "body_rcs_m2": 0.00235699,
@@ -245,11 +247,41 @@ def test_flashes_too_weak_one_by_one_still_tell_a_drone(tmp_path):
                        "tilt_deg": [0.822981, 2.16204, -1.26461, -4.60432], "blades": 2, "arm_m": 0.114539,
                        "blade_length_m": 0.0682237, "rev_per_s": [124.929, -119.642, 119.284, -118.759]}}
     path, _ = simulate(tmp_path, scene_mapping(radar, [quad], noise={"moving_snr_db": 2.35625}, seed=742657044))
-    row = process_capture(path, ProcessParams(n_blades=2, elevation_deg=51.4581)).rows[0]
+    given = process_capture(path, ProcessParams(n_blades=2, elevation_deg=51.4581)).rows[0]
+    assert given["class"] == "drone"
+    assert given["chopping_freq_hz_status"] == given["rotation_rate_hz_status"] == "ok"
+    assert given["rotation_rate_hz"] == pytest.approx(np.median([124.929, 119.642, 119.284, 118.759]), rel=0.02)
+    assert given["chopping_freq_hz"] == pytest.approx(2 * given["rotation_rate_hz"])
+    row = process_capture(path, ProcessParams(elevation_deg=51.4581)).rows[0]
     assert row["class"] == "drone"
     assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"
     assert row["chopping_freq_hz"] is None and row["rotation_rate_hz"] is None
-    assert "power repeats every 4.1" in row["notes"]
+    assert "power repeats every 4.1" in row["notes"] and "give --blades" in row["notes"]
+
+
+def test_power_repeating_at_an_offset_between_rotors_gives_no_rate(tmp_path):
+    """Four 2-blade rotors of 8 point scatterers at 78.8-80.9 rev/s, aliased at 76.5 GHz, 0.3 dB per IF sample
+    (a scene of the default sweep, its clutter left out), N = 2 given. The power's autocorrelation peaks at
+    1.86 ms (537 Hz) as well as at the chopping period 6.25 ms (160 Hz, 3.36 x as long): two rotors a phase
+    apart flash 1.86 ms after each other in every period. Read as the chopping period it would give 269 rev/s
+    for 80. The power does not repeat whole at 1.86 ms (its strongest later peak is no multiple of it): the
+    rotation is withheld as ambiguous."""
+    radar = dict(f_start_hz=76.5e9, f_stop_hz=76.6e9, ramp_up_s=51.5096e-6, chirp_period_s=64.3869e-6,
+                 sample_rate_hz=1242486.8386475532, n_samples=64, n_chirps=5599, n_channels=4)
+    quad = {"name": "quad", "type": "multirotor", "elevation_deg": 8.72502, "body_rcs_m2": 0.00164077,
+            "motion": {"position_m": [2.01909, -0.512386, 8.60709], "velocity_mps": [4.49027, 2.53488, 0.0],
+                       "sway_amplitude_m": [0.0497022, 0.0350149, 0.0505261], "sway_period_s": 3.63558},
+            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 8, "root_m": 0.01,
+                       "phase_deg": [56.4908, 190.606, 26.592, 301.067], "blade_rcs_m2": 0.00787615,
+                       "rate_wander_fraction": 0.00994286, "rate_wander_period_s": 2.5029,
+                       "tilt_deg": [-3.39448, -4.29234, -4.12989, -2.26073], "blades": 2, "arm_m": 0.250789,
+                       "blade_length_m": 0.0983777, "rev_per_s": [78.774, -80.2409, 80.8529, -80.0918]}}
+    path, _ = simulate(tmp_path, scene_mapping(radar, [quad], noise={"moving_snr_db": 0.257463}, seed=1502228278))
+    row = process_capture(path, ProcessParams(n_blades=2)).rows[0]
+    assert row["class"] == "drone"
+    assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"
+    assert row["rotation_rate_hz"] is None
+    assert "power repeats every 1.8" in row["notes"] and "repeats in part at other lags" in row["notes"]
 
 
 def test_chopping_not_read_at_a_multiple_of_the_comb(tmp_path):

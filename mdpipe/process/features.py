@@ -314,15 +314,31 @@ def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noi
     return 1.0 / found.period_s, None
 
 
-def _power_flashes(demodulated, *, prf_hz):
-    """Rotation withheld as ``ambiguous_period`` when blade flashes show only in the echo's power (too weak for
-    flash times or line combs; :func:`mdpipe.process.flashes.power_period`), else None."""
+def _power_flashes(demodulated, *, prf_hz, n_blades):
+    """Rotation from blade flashes that show only in the echo's power (too weak for flash times or line combs;
+    :func:`mdpipe.process.flashes.power_period`), else None.
+
+    The power of N equal blades repeats once per chopping period for an even N. For an odd N it repeats twice
+    or once (the approaching and the receding blade flash alike, or, off the range bin's centre, not), and with
+    one blade differing once a turn. So the power's period is the chopping period only for an even N given and a
+    power that repeats whole (:class:`~mdpipe.process.flashes.PowerPeriod`: one blade differing shows a repeat
+    at the chopping period within the turn's); otherwise rotation is withheld as ``ambiguous_period``.
+    """
     found = power_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
     if found is None:
         return None
+    if found.whole and n_blades is not None and n_blades % 2 == 0:
+        chopping_hz = 1.0 / found.period_s
+        rate_hz = float(rotor.rotation_rate_from_chopping_hz(chopping_hz, n_blades=n_blades))
+        return Rotation(Measured(chopping_hz), Measured(rate_hz), (rate_hz,), n_blades, "given")
+    if not found.whole:
+        why = "it repeats in part at other lags: flashes of rotors a phase apart, or a multiple of the flash period"
+    elif n_blades is None:
+        why = "it is the chopping period for an even blade count (give --blades)"
+    else:
+        why = "an odd blade count's power repeats once or twice per chopping period"
     note = (f"rotation not estimable: the echo's power repeats every {found.period_s * 1e3:.3g} ms like blade "
-            "flashes, too weak for the flash times or line combs that tell the chopping frequency (the power's "
-            "period may be a whole multiple of the flash period)")
+            f"flashes, too weak for the flash times or line combs that tell the chopping frequency; {why}")
     return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
 
 
@@ -423,7 +439,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     elif timed_hz is not None:  # the echo's period: one blade passage
         chopping_hz = np.array([timed_hz])
     if chopping_hz is None:
-        weak = _power_flashes(demodulated, prf_hz=prf_hz)
+        weak = _power_flashes(demodulated, prf_hz=prf_hz, n_blades=n_blades)
         if weak is not None:
             return weak
         if slowest_hz > combs.MIN_CHOP_HZ:
@@ -434,7 +450,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(withheld("no_flashes", note), withheld("no_flashes", note))
     fastest_mps = 2 * np.pi * float(chopping_hz.max()) * MIN_BLADE_REACH_M
     if not aliased and halfwidth_mps is not None and halfwidth_mps < fastest_mps:
-        weak = _power_flashes(demodulated, prf_hz=prf_hz)
+        weak = _power_flashes(demodulated, prf_hz=prf_hz, n_blades=n_blades)
         if weak is not None:
             return weak
         note = (f"rotation not estimable: a comb at {np.median(chopping_hz):.4g} Hz in a micro-Doppler only "

@@ -21,7 +21,7 @@ whole multiple of the flash period (the stroboscopic amplitude pattern above rep
 from dataclasses import dataclass
 
 import numpy as np
-from mdpipe.process.filters import moving_average
+from mdpipe.process.filters import local_maxima, moving_average
 from mdpipe.process.periodicity import autocorrelation, find_period, lag_range, period_from_autocorrelation
 
 EVENT_SIGMAS = 6.0          # an event stands this many robust sigmas above the median power
@@ -44,6 +44,27 @@ POWER_RECUR_SHARE = 0.25    # ... recurring at 2T and 3T with this share of its 
 MIN_SHAPE_CHIRPS = 8        # the shortest power period searched: its peak's width must be readable
 MAX_POWER_PERIOD_S = 1 / 40.0  # two blades at 20 rev/s flash 40 times a second; a wingbeat's second harmonic
                                # reaches 40 Hz
+WHOLE_SPAN = 4.5            # the power's strongest peak past its period, up to this many periods, lies at a multiple
+WHOLE_TOLERANCE = 0.1       # ... within this share of a period (rates 1-4 % apart shift the multiples by up to 0.06)
+SUB_SHARE = 0.3             # a repeat at period / k this strong (of the period's) may be the flash period: the swept
+                            # drones whose power period was 2x or 3x their flashes' held 0.44-0.73 there; pairs of
+                            # rotors a phase apart left up to 0.27 (once 0.45: withheld) where it was theirs. One
+                            # blade of two differing repeats at half the turn with 2 a^2 / (1 + a^4) of it (a: the
+                            # weaker blade's amplitude share): a blade over 8 dB weaker passes (see README)
+MAX_SUB_DIVISOR = 4
+AROUND = 0.03               # a lag period / k is looked for within +-3 %
+
+
+@dataclass(frozen=True)
+class PowerPeriod:
+    """The period of an echo's power, ``period_s``, and whether the power repeats ``whole`` at it: the strongest
+    peak of its autocorrelation past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it, and
+    no lag ``period_s / k`` (k = 2 .. ``MAX_SUB_DIVISOR``) repeats with ``SUB_SHARE`` of its strength. A period
+    that is not whole is a fixed offset between flashes (two rotors a phase apart: 8-point blades read 537 Hz for
+    160) or a multiple of the flash period (flashes sampled stroboscopically, or one blade differing)."""
+
+    period_s: float
+    whole: bool
 
 
 @dataclass(frozen=True)
@@ -135,8 +156,7 @@ def _fold_share(times, period, divisor):
 
 
 def power_period(micro_signal, *, prf_hz, min_period_s):
-    """The period of a body-free echo's power (a :class:`~mdpipe.process.periodicity.Period`) when it is blade
-    flashes', else None.
+    """The period of a body-free echo's power (a :class:`PowerPeriod`) when it is blade flashes', else None.
 
     The power's autocorrelation must peak at a lag between ``min_period_s`` (and ``MIN_SHAPE_CHIRPS``) and
     ``MAX_POWER_PERIOD_S``, recur at its multiples (``POWER_RECUR_SHARE``), and have the shape of short
@@ -167,4 +187,20 @@ def power_period(micro_signal, *, prf_hz, min_period_s):
     left, right = below[below < lag], below[below > lag]
     if len(left) == 0 or len(right) == 0 or right[0] - left[-1] - 1 > POWER_PEAK_WIDTH * lag:
         return None
-    return found
+    return PowerPeriod(found.period_s, _repeats_whole(r, lag, last=min(int(WHOLE_SPAN * lag), hi)))
+
+
+def _repeats_whole(r, lag, *, last):
+    """Whether the autocorrelation ``r`` repeats whole at ``lag`` (see :class:`PowerPeriod`); ``last``: the last
+    lag read."""
+    later = local_maxima(r[lag:last + 1]) + lag
+    strongest = later[np.argmax(r[later])] if len(later) else lag
+    if abs(strongest / lag - round(strongest / lag)) > WHOLE_TOLERANCE:
+        return False
+    for divisor in range(2, MAX_SUB_DIVISOR + 1):
+        lo, hi = int(np.floor(lag / divisor * (1 - AROUND))), int(np.ceil(lag / divisor * (1 + AROUND)))
+        peaks = local_maxima(r[lo - 1:hi + 2]) + lo - 1
+        peaks = peaks[(peaks >= lo) & (peaks <= hi)]
+        if len(peaks) and r[peaks].max() >= SUB_SHARE * r[lag]:
+            return False
+    return True
