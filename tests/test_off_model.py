@@ -284,6 +284,32 @@ def test_power_repeating_at_an_offset_between_rotors_gives_no_rate(tmp_path):
     assert "power repeats every 1.8" in row["notes"] and "repeats in part at other lags" in row["notes"]
 
 
+def test_a_folded_comb_at_the_turn_rate_confirmed_by_the_power(tmp_path):
+    """Four 3-blade rotors of 8 point scatterers at 50.3-51.8 rev/s, one blade in three 1.53x as strong, K band,
+    aliased (a scene of the default sweep, its clutter left out), N = 3 given. The folded comb lies at the turn
+    rate, 51.3 Hz (the blade differing lines it); no flash times. The power repeats at 306.7 Hz, 6 x the comb:
+    2N flashes a turn of an odd N, so the comb is the turn rate and the chopping frequency 3 x 51.3 Hz. (Old
+    code: withheld, a folded comb the flash times did not confirm.) Without N the ratio 6 is also 1 x a
+    6-blade chopping comb or 2 x an odd N's: withheld."""
+    radar = dict(f_start_hz=24.0e9, f_stop_hz=24.25e9, ramp_up_s=79.175e-6, chirp_period_s=98.9687e-6,
+                 sample_rate_hz=808335.9654436376, n_samples=64, n_chirps=9081, n_channels=2)
+    rates = [50.336, -51.802, 51.518, -51.118]
+    quad = {"name": "quad", "type": "multirotor", "elevation_deg": 38.2329, "body_rcs_m2": 0.2466,
+            "motion": {"position_m": [2.0296, 0.771377, 6.60586], "velocity_mps": [0.0, 0.0, 0.0]},
+            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 8, "root_m": 0.01,
+                       "phase_deg": [235.236, 16.8823, 348.715, 171.161], "blade_rcs_m2": 0.00104203,
+                       "tilt_deg": [4.24698, 1.64328, 2.09714, -0.569364], "blades": 3, "arm_m": 0.44132,
+                       "blade_length_m": 0.178707, "rev_per_s": rates, "blade_gains": [1.0, 1.0, 1.52899]}}
+    path, _ = simulate(tmp_path, scene_mapping(radar, [quad], noise={"moving_snr_db": 28.3436}, seed=857170121))
+    given = process_capture(path, ProcessParams(n_blades=3, elevation_deg=38.2329)).rows[0]
+    assert given["aliased"] and given["rotation_rate_hz_status"] == "ok"
+    assert given["rotation_rate_hz"] == pytest.approx(np.median(np.abs(rates)), rel=0.01)
+    assert given["chopping_freq_hz"] == pytest.approx(3 * given["rotation_rate_hz"])
+    auto = process_capture(path, ProcessParams(elevation_deg=38.2329)).rows[0]
+    assert auto["class"] == "drone" and auto["rotation_rate_hz_status"] == "ambiguous_period"
+    assert "folded line comb at 51.3" in auto["notes"]
+
+
 def test_chopping_not_read_at_a_multiple_of_the_comb(tmp_path):
     """Four tapered 2-blade rotors at 63.5-64.1 rev/s, K band, flying at 5.9 m/s (a scene of the default sweep, its
     clutter left out). On 0.25 s segments the rotors' high orders smear and every fifth line of the 127 Hz comb

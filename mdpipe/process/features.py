@@ -342,6 +342,29 @@ def _power_flashes(demodulated, *, prf_hz, n_blades):
     return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
 
 
+def _folded_comb_by_power(demodulated, comb_hz, *, prf_hz, n_blades):
+    """The chopping frequencies of a folded comb (spacings ``comb_hz``) that the echo's power period confirms for
+    the blade count given, else None.
+
+    The power of N blades repeats 1 (even N) or 1-2 (odd N) times per chopping period; the comb is the
+    chopping frequency or, one blade differing, the turn rate. With N given, the power's rate over the comb's
+    tells which: 1 or 2 (odd N) times it, the chopping; N or 2N times, the turn rate. Only a power that repeats
+    whole (:class:`~mdpipe.process.flashes.PowerPeriod`) is read.
+    """
+    if n_blades is None:
+        return None
+    found = power_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
+    if found is None or not found.whole:
+        return None
+    ratio = 1.0 / found.period_s / float(np.median(comb_hz))
+    per_chop = rotor.flashes_per_revolution(n_blades) // n_blades
+    for factor, chopping_hz in ((1, comb_hz), (per_chop, comb_hz), (n_blades, comb_hz * n_blades),
+                                (per_chop * n_blades, comb_hz * n_blades)):
+        if abs(ratio / factor - 1) <= AGREEMENT:
+            return chopping_hz
+    return None
+
+
 def _whole_ratio(ratio):
     """The whole number k (2..6) with ratio ~ k or 1/k, else 0."""
     for k in range(2, 7):
@@ -431,9 +454,12 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
             return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
     elif chopping_hz is not None and aliased:
-        note = ("rotation not estimable: a folded line comb at {:.4g} Hz that the flash times do not confirm "
-                "(folded combs can coincide by chance)").format(float(np.median(chopping_hz)))
-        return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+        confirmed = _folded_comb_by_power(demodulated, chopping_hz, prf_hz=prf_hz, n_blades=n_blades)
+        if confirmed is None:
+            note = (f"rotation not estimable: a folded line comb at {float(np.median(chopping_hz)):.4g} Hz that "
+                    "neither the flash times nor the power's period confirm (folded combs can coincide by chance)")
+            return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+        chopping_hz = confirmed
     elif timed_hz is not None and aliased:
         chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
     elif timed_hz is not None:  # the echo's period: one blade passage
