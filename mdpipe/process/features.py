@@ -18,7 +18,7 @@ from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_SPEED_MPS, MIN
 from mdpipe.process.flashes import flash_period, power_period
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
-from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeat
+from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeats
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame
 BODY_FRAME_S = 0.032
@@ -605,9 +605,9 @@ def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_
 
 def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     """Wingbeat frequency (Hz) of a bird's body-demodulated echo, from two wingbeats in the dwell on."""
-    beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz)
-    if beat is not None and beat.strength >= (MIN_PERIODICITY if beat.repeats >= 2 else MIN_SINGLE_PERIODICITY):
-        return Measured(1.0 / beat.period_s)
+    for beat in wingbeats(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz):
+        if beat is not None and beat.strength >= (MIN_PERIODICITY if beat.repeats >= 2 else MIN_SINGLE_PERIODICITY):
+            return Measured(1.0 / beat.period_s)
     note = (f"no wingbeat between {max(MIN_WINGBEAT_HZ, 2.0 / dwell_s):.2g} and {MAX_WINGBEAT_HZ:g} Hz "
             f"(a dwell of {dwell_s:.3g} s holds two wingbeats only above {2.0 / dwell_s:.2g} Hz)")
     return withheld("dwell_short" if dwell_s < 2.0 / MAX_WINGBEAT_HZ else "no_wingbeat", note)
