@@ -329,6 +329,25 @@ def test_wingbeat_of_a_bird_gliding_between_flapping_bursts(tmp_path):
     assert row["wingbeat_freq_hz"] == pytest.approx(5.34426, rel=0.01)
 
 
+def test_a_flap_glide_cycle_is_not_the_wingbeat(tmp_path):
+    """A crow flapping 3.97 Hz for 1.01 s, then gliding 0.5 s, seen 3.6 s at K band (a scene of the default
+    sweep, its clutter left out). Its pattern repeats whole with the flap-glide cycle, 1.51 s, twice in the
+    dwell: read as a wingbeat of 0.66 Hz (old code, status ok). The wingbeats within each burst repeat too, 11
+    times: a period seen to repeat is taken before one whose repeat the record cannot hold, and the cycle gives
+    way to the wingbeat within it."""
+    radar = dict(f_start_hz=24.0e9, f_stop_hz=24.1e9, ramp_up_s=142.505e-6, chirp_period_s=178.132e-6,
+                 sample_rate_hz=898214.0986491704, n_samples=128, n_chirps=20324, n_channels=1)
+    crow = {"name": "crow", "type": "bird", "a1_deg": 34.5855, "a2_deg": 45.8686,
+            "flap_glide": {"flap_s": 1.00814, "glide_s": 0.502789}, "wingbeat_drift_fraction": 0.0451091,
+            "wing_roughness": 0.18, "wingbeat_hz": 3.96801, "upper_arm_m": 0.168708, "forearm_m": 0.173179,
+            "body_rcs_m2": 0.00909997, "wing_rcs_m2": 0.0011676,
+            "motion": {"position_m": [68.8037, 15.575, 16.3072], "velocity_mps": [-4.6787, -7.56866, 0.0]}}
+    path, _ = simulate(tmp_path, scene_mapping(radar, [crow], noise={"moving_snr_db": 5.26369}, seed=2090479518))
+    row = process_capture(path, ProcessParams()).rows[0]
+    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
+    assert row["wingbeat_freq_hz"] == pytest.approx(3.96801, rel=0.01)
+
+
 def test_chopping_not_read_at_a_multiple_of_the_comb(tmp_path):
     """Four tapered 2-blade rotors at 63.5-64.1 rev/s, K band, flying at 5.9 m/s (a scene of the default sweep, its
     clutter left out). On 0.25 s segments the rotors' high orders smear and every fifth line of the 127 Hz comb

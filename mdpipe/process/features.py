@@ -18,7 +18,7 @@ from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_SPEED_MPS, MIN
 from mdpipe.process.flashes import flash_period, power_period
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
-from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeats
+from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeat
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame
 BODY_FRAME_S = 0.032
@@ -27,8 +27,6 @@ MAX_SPEED_MPS = 25.0         # birds and small drones fly slower: a faster alias
 BODY_TRACK_FRAMES = 9        # running median of the body track (rotor lines win single frames)
 MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
 FLASHES_PER_WINDOW = 1.5     # flash main lobes the edge window must hold: Gamma >= 24 for N = 2 (config 4: 26.7)
-MIN_PERIODICITY = 0.2        # wingbeat autocorrelation prominence needed
-MIN_SINGLE_PERIODICITY = 0.4  # ... when the record holds only two wingbeats and the repeat cannot be seen
 MIN_ROTOR_PERIODICITY = 0.6  # a rotor's echo repeats almost exactly (measured 0.93-0.95; a gull's best: 0.40)
 HIGHPASS_SHARE = 0.25        # body removal for unaliased echoes: cut below this share of the band's half-width
 EDGE_NOTCH_SHARE = 0.05      # body removal before the flash edges (which lie at the band's ends)
@@ -605,9 +603,9 @@ def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_
 
 def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     """Wingbeat frequency (Hz) of a bird's body-demodulated echo, from two wingbeats in the dwell on."""
-    for beat in wingbeats(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz):
-        if beat is not None and beat.strength >= (MIN_PERIODICITY if beat.repeats >= 2 else MIN_SINGLE_PERIODICITY):
-            return Measured(1.0 / beat.period_s)
+    beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz)
+    if beat is not None:
+        return Measured(1.0 / beat.period_s)
     note = (f"no wingbeat between {max(MIN_WINGBEAT_HZ, 2.0 / dwell_s):.2g} and {MAX_WINGBEAT_HZ:g} Hz "
             f"(a dwell of {dwell_s:.3g} s holds two wingbeats only above {2.0 / dwell_s:.2g} Hz)")
     return withheld("dwell_short" if dwell_s < 2.0 / MAX_WINGBEAT_HZ else "no_wingbeat", note)

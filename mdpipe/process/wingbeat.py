@@ -9,7 +9,12 @@ is then found as for rotors (:mod:`mdpipe.process.periodicity`).
 The rows read are those lit (``SIGNAL_ROW_DB`` over the noise) in half the frames; a bird that glides
 between flapping bursts lights its wing rows only while it flaps, so where those rows show no wingbeat,
 the rows lit in a quarter of the frames are read. (Read first, those rows add the bursts' on and off to
-the pattern of a bird that flaps most of the dwell, and two herons and geese lost their wingbeat.)
+the pattern of a bird that flaps most of the dwell, and a heron and a goose lost their wingbeat.)
+
+A period whose repeat the record cannot hold (two periods in the dwell) is taken only at twice the
+strength of one seen to repeat, and it gives way to a shorter period of the same pattern that is seen
+to repeat: the cycle of a bird flapping 1 s and gliding 0.5 s repeats whole (a crow read at 0.66 Hz,
+its flap-glide cycle, for 3.97 Hz), the wingbeats within it repeat too.
 """
 
 import numpy as np
@@ -28,6 +33,9 @@ MAX_MICRO_DOPPLER_HZ = 2000.0  # rows kept: wings move at a few m/s (< 2 kHz eve
 SIGNAL_ROW_DB = 10.0
 SIGNAL_ROW_PERCENTILES = (50, 75)  # rows lit in half the frames, then in a quarter (flapping between glides)
 REPEAT_SHARE = 0.8  # repeats looked for up to 80 % of the record: three wingbeats show their repeat at 2T
+MIN_PERIODICITY = 0.2         # autocorrelation prominence a wingbeat needs
+MIN_SINGLE_PERIODICITY = 0.4  # ... when the record holds only two wingbeats and the repeat cannot be seen
+SHORTER_SHARE = 1 / 3         # a single-repeat period gives way to a repeating one up to a third of it
 
 
 def pattern_autocorrelation(spec, *, detrend_frames, noise_level, row_percentile=50):
@@ -48,16 +56,28 @@ def pattern_autocorrelation(spec, *, detrend_frames, noise_level, row_percentile
     return r / r[0] if r[0] > 0 else r
 
 
-def wingbeats(demodulated, *, prf_hz, noise_power, band_hz=None):
-    """Wingbeat periods of a body-demodulated echo (noise ``noise_power`` per chirp): for each row set of
-    ``SIGNAL_ROW_PERCENTILES`` in turn, a :class:`~mdpipe.process.periodicity.Period` or None (a generator:
-    the caller stops at the first it accepts).
+def _period(r, *, frame_rate):
+    """The wingbeat period in a pattern autocorrelation ``r`` (a Period or None): a single-repeat period gives way
+    to a shorter one, up to ``SHORTER_SHARE`` of it, seen to repeat with ``MIN_PERIODICITY``."""
+    found = period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
+                                        max_period_s=1.0 / MIN_WINGBEAT_HZ, repeat_share=REPEAT_SHARE)
+    if found is not None and found.repeats == 1:
+        shorter = period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
+                                              max_period_s=SHORTER_SHARE * found.period_s, repeat_share=REPEAT_SHARE)
+        if shorter is not None and shorter.repeats >= 2 and shorter.strength >= MIN_PERIODICITY:
+            return shorter
+    return found
+
+
+def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
+    """Wingbeat period of a body-demodulated echo (noise ``noise_power`` per chirp): a
+    :class:`~mdpipe.process.periodicity.Period`, or None.
 
     The spectrogram frame is ``FRAME_S``, or shorter where the micro-Doppler band (``band_hz`` wide) still
-    holds ``BAND_BINS`` Doppler bins at the shorter frame (down to ``MIN_FRAME_S``).
-
-    Needs two wingbeats in the dwell; with fewer than three the period cannot be seen to repeat
-    (``repeats`` is 1) and the caller asks more of its strength.
+    holds ``BAND_BINS`` Doppler bins at the shorter frame (down to ``MIN_FRAME_S``). Each row set of
+    ``SIGNAL_ROW_PERCENTILES`` gives a period; the first seen to repeat with ``MIN_PERIODICITY`` is taken,
+    else the first whose repeat the record cannot hold (two wingbeats in the dwell) with
+    ``MIN_SINGLE_PERIODICITY``.
     """
     frame_s = min(FRAME_S, len(demodulated) / prf_hz / 8)
     if band_hz:
@@ -66,8 +86,15 @@ def wingbeats(demodulated, *, prf_hz, noise_power, band_hz=None):
     spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=hop_s)
     frame_rate = 1.0 / spec.hop_s
     noise_level = noise_level_per_bin(noise_power, int(round(spec.window_s * prf_hz)))
+    single = None
     for row_percentile in SIGNAL_ROW_PERCENTILES:
         r = pattern_autocorrelation(spec, detrend_frames=int(2 * frame_rate / MIN_WINGBEAT_HZ),
                                     noise_level=noise_level, row_percentile=row_percentile)
-        yield period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
-                                          max_period_s=1.0 / MIN_WINGBEAT_HZ, repeat_share=REPEAT_SHARE)
+        found = _period(r, frame_rate=frame_rate)
+        if found is None:
+            continue
+        if found.repeats >= 2 and found.strength >= MIN_PERIODICITY:
+            return found
+        if found.repeats == 1 and found.strength >= MIN_SINGLE_PERIODICITY and single is None:
+            single = found
+    return single
