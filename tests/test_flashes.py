@@ -48,8 +48,12 @@ def test_flashes_too_weak_for_events_show_in_the_power_autocorrelation():
     assert flashes.flash_period(signal, prf_hz=PRF_HZ, min_period_s=1 / 3000, max_period_s=1 / 20,
                                 noise_power=1.0) is None
     found = flashes.power_period(signal, prf_hz=PRF_HZ, min_period_s=1 / 3000)
-    assert found.period_s * PRF_HZ == pytest.approx(period, rel=0.01) and found.whole
+    assert found.period_s * PRF_HZ == pytest.approx(period, rel=0.01)
     assert flashes.power_period(noise, prf_hz=PRF_HZ, min_period_s=1 / 3000) is None
+    # flashes shorter than a chirp repeat whole at a multiple of their period where the chirps sample them
+    # alike, their own period then holding as little as a tenth of it: at 0.09 against a standard error of
+    # ~0.012, a sub-period's repeat of 0.15 x 0.09 would stay under 3 standard errors; nothing rules it out
+    assert not found.whole
 
 
 def _flash_train(n, period, *, amplitudes, width_chirps, start=0.3, seed=7):

@@ -289,8 +289,9 @@ def test_a_folded_comb_at_the_turn_rate_confirmed_by_the_power(tmp_path):
     aliased (a scene of the default sweep, its clutter left out), N = 3 given. The folded comb lies at the turn
     rate, 51.3 Hz (the blade differing lines it); no flash times. The power repeats at 306.7 Hz, 6 x the comb:
     2N flashes a turn of an odd N, so the comb is the turn rate and the chopping frequency 3 x 51.3 Hz. (Old
-    code: withheld, a folded comb the flash times did not confirm.) Without N the ratio 6 is also 1 x a
-    6-blade chopping comb or 2 x an odd N's: withheld."""
+    code: withheld, a folded comb the flash times did not confirm.) Without N given, the comb's every third
+    line stands out (the blade differing) and the power flashes 6 times a turn, as 3 blades do and a comb of
+    equal blades (1-2 flashes per spacing) does not: N = 3 measured, the same rotation."""
     radar = dict(f_start_hz=24.0e9, f_stop_hz=24.25e9, ramp_up_s=79.175e-6, chirp_period_s=98.9687e-6,
                  sample_rate_hz=808335.9654436376, n_samples=64, n_chirps=9081, n_channels=2)
     rates = [50.336, -51.802, 51.518, -51.118]
@@ -306,8 +307,8 @@ def test_a_folded_comb_at_the_turn_rate_confirmed_by_the_power(tmp_path):
     assert given["rotation_rate_hz"] == pytest.approx(np.median(np.abs(rates)), rel=0.01)
     assert given["chopping_freq_hz"] == pytest.approx(3 * given["rotation_rate_hz"])
     auto = process_capture(path, ProcessParams(elevation_deg=38.2329)).rows[0]
-    assert auto["class"] == "drone" and auto["rotation_rate_hz_status"] == "ambiguous_period"
-    assert "folded line comb at 51.3" in auto["notes"]
+    assert auto["rotation_rate_hz_status"] == "ok" and (auto["n_blades"], auto["n_blades_source"]) == (3, "measured")
+    assert auto["rotation_rate_hz"] == pytest.approx(given["rotation_rate_hz"], rel=1e-6)
 
 
 def test_wingbeat_of_a_bird_gliding_between_flapping_bursts(tmp_path):

@@ -312,9 +312,9 @@ def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noi
     return 1.0 / found.period_s, None
 
 
-def _power_flashes(demodulated, *, prf_hz, n_blades):
-    """Rotation from blade flashes that show only in the echo's power (too weak for flash times or line combs;
-    :func:`mdpipe.process.flashes.power_period`), else None.
+def _power_flashes(found, *, n_blades):
+    """Rotation from blade flashes that show only in the echo's power (too weak for flash times or line combs):
+    ``found``, the power's :class:`~mdpipe.process.flashes.PowerPeriod` or None (then None).
 
     The power of N equal blades repeats once per chopping period for an even N. For an odd N it repeats twice
     or once (the approaching and the receding blade flash alike, or, off the range bin's centre, not), and with
@@ -322,7 +322,6 @@ def _power_flashes(demodulated, *, prf_hz, n_blades):
     power that repeats whole (:class:`~mdpipe.process.flashes.PowerPeriod`: one blade differing shows a repeat
     at the chopping period within the turn's); otherwise rotation is withheld as ``ambiguous_period``.
     """
-    found = power_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
     if found is None:
         return None
     if found.whole and n_blades is not None and n_blades % 2 == 0:
@@ -340,18 +339,17 @@ def _power_flashes(demodulated, *, prf_hz, n_blades):
     return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
 
 
-def _folded_comb_by_power(demodulated, comb_hz, *, prf_hz, n_blades):
+def _folded_comb_by_power(found, comb_hz, *, n_blades):
     """The chopping frequencies of a folded comb (spacings ``comb_hz``) that the echo's power period confirms for
     the blade count given, else None.
 
     The power of N blades repeats 1 (even N) or 1-2 (odd N) times per chopping period; the comb is the
     chopping frequency or, one blade differing, the turn rate. With N given, the power's rate over the comb's
     tells which: 1 or 2 (odd N) times it, the chopping; N or 2N times, the turn rate. Only a power that repeats
-    whole (:class:`~mdpipe.process.flashes.PowerPeriod`) is read.
+    whole (``found``, a :class:`~mdpipe.process.flashes.PowerPeriod` or None) is read.
     """
     if n_blades is None:
         return None
-    found = power_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
     if found is None or not found.whole:
         return None
     ratio = 1.0 / found.period_s / float(np.median(comb_hz))
@@ -411,6 +409,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         if offset_hz is not None:
             micro = micro * np.exp(-2j * np.pi * offset_hz * np.arange(len(micro)) / prf_hz)
     lines = combs.line_spectrum(micro, prf_hz=prf_hz, noise_power=noise_power)  # shared by the comb and N tests
+    power = power_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             lines=lines)
     timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
@@ -421,7 +420,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     chopping_hz, measured_n, flashes_only = None, None, False
     if comb is not None:
         chopping_hz, measured_n = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
-                                               band_hz=count_band_hz, n_blades=n_blades)
+                                               band_hz=count_band_hz, n_blades=n_blades, power=power)
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
         ratio = timed_hz / centre
@@ -452,7 +451,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
             return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
     elif chopping_hz is not None and aliased:
-        confirmed = _folded_comb_by_power(demodulated, chopping_hz, prf_hz=prf_hz, n_blades=n_blades)
+        confirmed = _folded_comb_by_power(power, chopping_hz, n_blades=n_blades if n_blades is not None else measured_n)
         if confirmed is None:
             note = (f"rotation not estimable: a folded line comb at {float(np.median(chopping_hz)):.4g} Hz that "
                     "neither the flash times nor the power's period confirm (folded combs can coincide by chance)")
@@ -463,7 +462,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     elif timed_hz is not None:  # the echo's period: one blade passage
         chopping_hz = np.array([timed_hz])
     if chopping_hz is None:
-        weak = _power_flashes(demodulated, prf_hz=prf_hz, n_blades=n_blades)
+        weak = _power_flashes(power, n_blades=n_blades)
         if weak is not None:
             return weak
         if slowest_hz > combs.MIN_CHOP_HZ:
@@ -474,7 +473,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(withheld("no_flashes", note), withheld("no_flashes", note))
     fastest_mps = 2 * np.pi * float(chopping_hz.max()) * MIN_BLADE_REACH_M
     if not aliased and halfwidth_mps is not None and halfwidth_mps < fastest_mps:
-        weak = _power_flashes(demodulated, prf_hz=prf_hz, n_blades=n_blades)
+        weak = _power_flashes(power, n_blades=n_blades)
         if weak is not None:
             return weak
         note = (f"rotation not estimable: a comb at {np.median(chopping_hz):.4g} Hz in a micro-Doppler only "
@@ -506,24 +505,33 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     return Rotation(chopping, measured, rates, blades, source)
 
 
-def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None):
+def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None, power=None):
     """Chopping frequencies from comb spacings, and the blade count where the line pattern tells it.
 
     A comb whose every N-th line stands out is a rotor's turn seen through one blade that differs:
     its chopping frequency is N times the spacing. A comb with weaker lines between its lines is the
-    chopping comb of such a rotor. Either way N is measured. Folded (aliased) combs tell neither.
-    A pattern of every N-th line is confirmed by the echo repeating each 1/N turn, or by N given.
+    chopping comb of such a rotor. Either way N is measured. A pattern of every N-th line is confirmed by
+    N given, by the echo repeating each 1/N turn, or by the echo's power (``power``, a
+    :class:`~mdpipe.process.flashes.PowerPeriod` or None) flashing as N blades turning at the comb's rate
+    do, when that is more than twice per spacing (N > 2: a comb of equal blades at the chopping frequency
+    flashes once or twice per spacing, as two blades turning at it do). Folded (aliased) combs tell N only
+    by the power (their lines interleave orders: the pattern alone, even of the N given, is not trusted).
     """
+    pattern = combs.blade_count_from_line_pattern(lines, float(spacing_hz[0]), half_width_hz=band_hz)
+    if pattern:
+        flashes_hz = rotor.flashes_per_revolution(pattern) * float(np.median(spacing_hz))
+        if (pattern == n_blades and not aliased) or (rotor.flashes_per_revolution(pattern) > 2 and power is not None
+                                                     and abs(1.0 / power.period_s / flashes_hz - 1) <= AGREEMENT):
+            return spacing_hz * pattern, pattern
     if aliased:
         return spacing_hz, None
-    pattern = combs.blade_count_from_line_pattern(lines, float(spacing_hz[0]), half_width_hz=band_hz)
     if pattern:
         # rotors at equal rates whose phases cancel some lines leave a pattern too; a tagged rotor's echo
         # repeats almost exactly each 1/N turn, and exactly each turn
         r = autocorrelation(micro)
         turn = prf_hz / float(spacing_hz[0])
         at = lambda lag: float(r[max(int(round(lag)) - 2, 0):int(round(lag)) + 3].max())  # noqa: E731
-        if pattern == n_blades or (at(turn / pattern) >= TAGGED_REPEAT and at(turn) > at(turn / pattern)):
+        if at(turn / pattern) >= TAGGED_REPEAT and at(turn) > at(turn / pattern):
             return spacing_hz * pattern, pattern
     return spacing_hz, combs.blade_count_from_sublines(lines, float(spacing_hz[0]), half_width_hz=band_hz)
 

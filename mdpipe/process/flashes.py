@@ -14,8 +14,9 @@ pairs of events than a random train would is the flash period.
 
 Flashes too weak to clear the event threshold one by one (a few dB above the noise at low SNR) still
 show in the autocorrelation of the echo's power, summed over every flash of the dwell
-(:func:`power_period`). That tells that blades flash, not how often: the power's period may be a
-whole multiple of the flash period (the stroboscopic amplitude pattern above repeats too).
+(:func:`power_period`). That tells that blades flash; how often only where the power repeats whole
+(:class:`PowerPeriod`): its period may be a whole multiple of the flash period (the stroboscopic
+amplitude pattern above repeats too, and a blade differing repeats once a turn).
 """
 
 from dataclasses import dataclass
@@ -46,22 +47,34 @@ MAX_POWER_PERIOD_S = 1 / 40.0  # two blades at 20 rev/s flash 40 times a second;
                                # reaches 40 Hz
 WHOLE_SPAN = 4.5            # the power's strongest peak past its period, up to this many periods, lies at a multiple
 WHOLE_TOLERANCE = 0.1       # ... within this share of a period (rates 1-4 % apart shift the multiples by up to 0.06)
-SUB_SHARE = 0.3             # a repeat at period / k this strong (of the period's) may be the flash period: the swept
-                            # drones whose power period was 2x or 3x their flashes' held 0.44-0.73 there; pairs of
-                            # rotors a phase apart left up to 0.27 (once 0.45: withheld) where it was theirs. One
-                            # blade of two differing repeats at half the turn with 2 a^2 / (1 + a^4) of it (a: the
-                            # weaker blade's amplitude share): a blade over 8 dB weaker passes (see README)
-MAX_SUB_DIVISOR = 4
+SUB_SHARE = 0.15            # a repeat at period / k (k = 2 .. period / the shortest lag read) this strong (of its)
+                            # may be the flash period. Flashes shorter than a chirp are sampled where they fall in
+                            # the ramp, a pattern that repeats after k flashes: their power repeats whole at k x
+                            # the flash period, the flash period itself with 0.11-0.9 of it (median 0.53) in
+                            # trains of one rotor. Rotors a phase apart left up to 0.27 (once 0.67) where the
+                            # period was the flashes' in the sweep: withheld. A rotor with one blade much weaker
+                            # than the other (a tag) repeats at the turn, at half of it with 2 a^2 / (1 + a^4) of
+                            # that (a: the weaker blade's amplitude share), and noise hides that: see README
+SUB_SIGMAS = 3.0            # ... and stands this many standard errors
+RESOLVED_CHIRPS = 4         # a power peak this wide (at half its prominence) or wider: flashes that last chirps, or
+                            # periods that wander by chirps; the sampled flash amplitudes do not repeat a pattern.
+                            # Over 6860 trains of one rotor's equal flashes (0.3-1.5 chirps, 6-20 dB) this and the
+                            # rest gave 1686 whole periods, none wrong (at 3 chirps: 2014, 7 at 2-5x the flashes')
+RESOLVED_SIGMAS = 8.0       # ... read only on a peak this many standard errors high (noise widened two single-rotor
+                            # trains' peaks at 6.1 and 6.6 standard errors, both read at a multiple of the flashes')
 AROUND = 0.03               # a lag period / k is looked for within +-3 %
 
 
 @dataclass(frozen=True)
 class PowerPeriod:
-    """The period of an echo's power, ``period_s``, and whether the power repeats ``whole`` at it: the strongest
-    peak of its autocorrelation past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it, and
-    no lag ``period_s / k`` (k = 2 .. ``MAX_SUB_DIVISOR``) repeats with ``SUB_SHARE`` of its strength. A period
-    that is not whole is a fixed offset between flashes (two rotors a phase apart: 8-point blades read 537 Hz for
-    160) or a multiple of the flash period (flashes sampled stroboscopically, or one blade differing)."""
+    """The period of an echo's power, ``period_s``, and whether the power repeats ``whole`` at it.
+
+    Whole: the strongest peak of its autocorrelation past the period, up to ``WHOLE_SPAN`` periods, lies at a
+    whole multiple of it, and no lag ``period_s / k`` (k >= 2, down to ``MIN_SHAPE_CHIRPS``) repeats with
+    ``SUB_SHARE`` of its strength (nor, for flashes that may fall between chirps, could have gone unseen). A
+    period that is not whole is a fixed offset between flashes (two rotors a phase apart: 8-point blades read
+    537 Hz for 160) or a multiple of the flash period (flashes sampled stroboscopically, or one blade
+    differing)."""
 
     period_s: float
     whole: bool
@@ -181,26 +194,43 @@ def power_period(micro_signal, *, prf_hz, min_period_s):
     baseline = r[lag] - found.strength
     lo, hi = lag_range(len(r), sample_rate_hz=prf_hz, min_period_s=min_period_s, max_period_s=MAX_POWER_PERIOD_S)
     standard_error = np.sqrt((1 + 2 * np.sum(r[1:lo] ** 2)) / (len(r) - lag))
-    if (r[lag] - np.median(r[lo:hi])) / standard_error < POWER_SIGMAS or baseline > POWER_BASELINE:
+    sigmas = (r[lag] - np.median(r[lo:hi])) / standard_error
+    if sigmas < POWER_SIGMAS or baseline > POWER_BASELINE:
         return None
     below = np.flatnonzero(r < baseline + found.strength / 2)
     left, right = below[below < lag], below[below > lag]
-    if len(left) == 0 or len(right) == 0 or right[0] - left[-1] - 1 > POWER_PEAK_WIDTH * lag:
+    width = right[0] - left[-1] - 1 if len(left) and len(right) else np.inf
+    if width > POWER_PEAK_WIDTH * lag:
         return None
-    return PowerPeriod(found.period_s, _repeats_whole(r, lag, last=min(int(WHOLE_SPAN * lag), hi)))
+    sampled = width < RESOLVED_CHIRPS or sigmas < RESOLVED_SIGMAS  # flashes that may fall between chirps
+    return PowerPeriod(found.period_s, _repeats_whole(r, lag, floor=SUB_SIGMAS * standard_error, sampled=sampled,
+                                                      shortest=max(MIN_SHAPE_CHIRPS, width / POWER_PEAK_WIDTH)))
 
 
-def _repeats_whole(r, lag, *, last):
-    """Whether the autocorrelation ``r`` repeats whole at ``lag`` (see :class:`PowerPeriod`); ``last``: the last
-    lag read."""
+def _repeats_whole(r, lag, *, floor, sampled, shortest):
+    """Whether the autocorrelation ``r`` repeats whole at ``lag`` (see :class:`PowerPeriod`).
+
+    Divisors of ``lag`` are read down to ``shortest`` lags: a flash period passes the shape test there (its
+    peak, as wide as this one, no wider than ``POWER_PEAK_WIDTH`` of it); shorter lags lie within the flash.
+
+    A repeat at a divisor of ``lag`` counts from ``floor`` up (a few standard errors: noise's local maxima
+    do not). Flashes that may fall between chirps (``sampled``: a peak narrower than ``RESOLVED_CHIRPS``, or
+    too weak for its width to be read)
+    repeat whole at a multiple of their period, their own period holding as little as a tenth of it; such a
+    period too weak for a repeat of ``SUB_SHARE`` of its strength to clear ``floor`` is not whole: nothing
+    rules out that the flashes come more often.
+    """
+    if sampled and SUB_SHARE * r[lag] < floor:
+        return False
+    last = min(int(WHOLE_SPAN * lag), len(r) // 2)  # an unbiased autocorrelation past half the record is noise
     later = local_maxima(r[lag:last + 1]) + lag
     strongest = later[np.argmax(r[later])] if len(later) else lag
     if abs(strongest / lag - round(strongest / lag)) > WHOLE_TOLERANCE:
         return False
-    for divisor in range(2, MAX_SUB_DIVISOR + 1):
+    for divisor in range(2, int(lag / shortest) + 1):
         lo, hi = int(np.floor(lag / divisor * (1 - AROUND))), int(np.ceil(lag / divisor * (1 + AROUND)))
         peaks = local_maxima(r[lo - 1:hi + 2]) + lo - 1
         peaks = peaks[(peaks >= lo) & (peaks <= hi)]
-        if len(peaks) and r[peaks].max() >= SUB_SHARE * r[lag]:
+        if len(peaks) and r[peaks].max() >= max(SUB_SHARE * r[lag], floor):
             return False
     return True
