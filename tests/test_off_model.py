@@ -252,6 +252,7 @@ def test_flashes_too_weak_one_by_one_still_tell_a_drone(tmp_path):
     assert given["chopping_freq_hz_status"] == given["rotation_rate_hz_status"] == "ok"
     assert given["rotation_rate_hz"] == pytest.approx(np.median([124.929, 119.642, 119.284, 118.759]), rel=0.02)
     assert given["chopping_freq_hz"] == pytest.approx(2 * given["rotation_rate_hz"])
+    assert given["rotor_rates_hz"] == [] and given["n_rotors"] is None  # a mean over the rotors, none resolved
     row = process_capture(path, ProcessParams(elevation_deg=51.4581)).rows[0]
     assert row["class"] == "drone"
     assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"

@@ -56,8 +56,9 @@ COLUMNS = (
     Column("doppler_high_hz", "Hz, + approaching", "upper edge of that extent", STATUS),
     Column("chopping_freq_hz", "Hz", "spacing of the rotor line comb, N f_rot (Eq. 5; the median over the rotors "
            "resolved)", STATUS),
-    Column("rotation_rate_hz", "rev/s", "rotation rate: the median of `rotor_rates_hz` (status `assumed_blades` when "
-           "N was neither given nor told by the echo)", STATUS),
+    Column("rotation_rate_hz", "rev/s", "rotation rate: the median of `rotor_rates_hz`, or, where no comb resolves "
+           "the rotors, the rate of the echo's power period (a mean over the rotors; `rotor_rates_hz` empty) "
+           "(status `assumed_blades` when N was neither given nor told by the echo)", STATUS),
     Column("rotation_period_s", "s", "1 / `rotation_rate_hz`", STATUS),
     Column("flash_period_s", "s", "time between blade flashes, 1 / (flashes per revolution x `rotation_rate_hz`): N "
            "flashes a turn for even N, 2N for odd", STATUS),

@@ -327,7 +327,7 @@ def _power_flashes(found, *, n_blades):
     if found.whole and n_blades is not None and n_blades % 2 == 0:
         chopping_hz = 1.0 / found.period_s
         rate_hz = float(rotor.rotation_rate_from_chopping_hz(chopping_hz, n_blades=n_blades))
-        return Rotation(Measured(chopping_hz), Measured(rate_hz), (rate_hz,), n_blades, "given")
+        return Rotation(Measured(chopping_hz), Measured(rate_hz), (), n_blades, "given")  # no rotor resolved
     if not found.whole:
         why = "it repeats in part at other lags: flashes of rotors a phase apart, or a multiple of the flash period"
     elif n_blades is None:
