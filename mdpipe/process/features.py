@@ -341,11 +341,11 @@ def _power_flashes(found, *, n_blades):
 
 def _folded_comb_by_power(found, comb_hz, *, n_blades):
     """The chopping frequencies of a folded comb (spacings ``comb_hz``) that the echo's power period confirms for
-    the blade count given, else None.
+    the blade count ``n_blades`` (given or measured), else None.
 
     The power of N blades repeats 1 (even N) or 1-2 (odd N) times per chopping period; the comb is the
     chopping frequency or, one blade differing, the turn rate. With N given, the power's rate over the comb's
-    tells which: 1 or 2 (odd N) times it, the chopping; N or 2N times, the turn rate. Only a power that repeats
+    tells which: 1 or 2 (odd N) times it, the chopping; N or 2N (odd N) times, the turn rate. Only a power that repeats
     whole (``found``, a :class:`~mdpipe.process.flashes.PowerPeriod` or None) is read.
     """
     if n_blades is None:

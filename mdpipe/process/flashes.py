@@ -47,14 +47,15 @@ MAX_POWER_PERIOD_S = 1 / 40.0  # two blades at 20 rev/s flash 40 times a second;
                                # reaches 40 Hz
 WHOLE_SPAN = 4.5            # the power's strongest peak past its period, up to this many periods, lies at a multiple
 WHOLE_TOLERANCE = 0.1       # ... within this share of a period (rates 1-4 % apart shift the multiples by up to 0.06)
-SUB_SHARE = 0.15            # a repeat at period / k (k = 2 .. period / the shortest lag read) this strong (of its)
-                            # may be the flash period. Flashes shorter than a chirp are sampled where they fall in
-                            # the ramp, a pattern that repeats after k flashes: their power repeats whole at k x
-                            # the flash period, the flash period itself with 0.11-0.9 of it (median 0.53) in
-                            # trains of one rotor. Rotors a phase apart left up to 0.27 (once 0.67) where the
-                            # period was the flashes' in the sweep: withheld. A rotor with one blade much weaker
-                            # than the other (a tag) repeats at the turn, at half of it with 2 a^2 / (1 + a^4) of
-                            # that (a: the weaker blade's amplitude share), and noise hides that: see README
+SUB_SHARE = 0.15            # a repeat at period / k (k >= 2, down to the shortest lag read) this strong, of the
+                            # period's, may be the flash period. Flashes shorter than a chirp are sampled where
+                            # they fall in the ramp, a pattern that repeats after k flashes: their power repeats
+                            # whole at k x the flash period, the flash period itself with 0.11-0.9 of it (median
+                            # 0.53) in trains of one rotor. Rotors a phase apart left up to 0.27 (once 0.67) where
+                            # the period was the flashes' in the sweep: withheld. A rotor with one blade much
+                            # weaker than the other (a tag) repeats at the turn, at half of it with
+                            # 2 a^2 / (1 + a^4) of that (a: the weaker blade's amplitude share), and noise hides
+                            # that: see README
 SUB_SIGMAS = 3.0            # ... and stands this many standard errors
 RESOLVED_CHIRPS = 4         # a power peak this wide (at half its prominence) or wider: flashes that last chirps, or
                             # periods that wander by chirps; the sampled flash amplitudes do not repeat a pattern.
@@ -70,9 +71,9 @@ class PowerPeriod:
     """The period of an echo's power, ``period_s``, and whether the power repeats ``whole`` at it.
 
     Whole: the strongest peak of its autocorrelation past the period, up to ``WHOLE_SPAN`` periods, lies at a
-    whole multiple of it, and no lag ``period_s / k`` (k >= 2, down to ``MIN_SHAPE_CHIRPS``) repeats with
-    ``SUB_SHARE`` of its strength (nor, for flashes that may fall between chirps, could have gone unseen). A
-    period that is not whole is a fixed offset between flashes (two rotors a phase apart: 8-point blades read
+    whole multiple of it, and no lag ``period_s / k`` (k >= 2, down to the shortest a flash period can be)
+    repeats with ``SUB_SHARE`` of its strength (nor, for flashes that may fall between chirps, could have gone
+    unseen). A period that is not whole is a fixed offset between flashes (two rotors a phase apart: 8-point blades read
     537 Hz for 160) or a multiple of the flash period (flashes sampled stroboscopically, or one blade
     differing)."""
 
@@ -215,10 +216,9 @@ def _repeats_whole(r, lag, *, floor, sampled, shortest):
 
     A repeat at a divisor of ``lag`` counts from ``floor`` up (a few standard errors: noise's local maxima
     do not). Flashes that may fall between chirps (``sampled``: a peak narrower than ``RESOLVED_CHIRPS``, or
-    too weak for its width to be read)
-    repeat whole at a multiple of their period, their own period holding as little as a tenth of it; such a
-    period too weak for a repeat of ``SUB_SHARE`` of its strength to clear ``floor`` is not whole: nothing
-    rules out that the flashes come more often.
+    too weak for its width to be read) repeat whole at a multiple of their period, their own period holding
+    as little as a tenth of it; such a period too weak for a repeat of ``SUB_SHARE`` of its strength to clear
+    ``floor`` is not whole: nothing rules out that the flashes come more often.
     """
     if sampled and SUB_SHARE * r[lag] < floor:
         return False

@@ -8,8 +8,9 @@ is then found as for rotors (:mod:`mdpipe.process.periodicity`).
 
 The rows read are those lit (``SIGNAL_ROW_DB`` over the noise) in half the frames; a bird that glides
 between flapping bursts lights its wing rows only while it flaps, so where those rows show no wingbeat
-seen to repeat, the rows lit in a quarter of the frames are read. (Read first, those rows add the bursts' on and off to
-the pattern of a bird that flaps most of the dwell, and a heron and a goose lost their wingbeat.)
+seen to repeat, the rows lit in a quarter of the frames are read. (Read first, those rows add the
+bursts' on and off to the pattern of a bird that flaps most of the dwell, and a heron and a goose lost
+their wingbeat.)
 
 A period whose repeat the record cannot hold (two periods in the dwell) is taken only at twice the
 strength of one seen to repeat, and it gives way to a shorter period of the same pattern that is seen
