@@ -83,6 +83,28 @@ def test_a_power_period_that_is_a_multiple_of_the_flashes_is_not_whole(amplitude
     assert not found.whole
 
 
+def test_a_weak_stroboscopic_multiple_is_not_whole():
+    """Flashes 0.3 chirp long every 31.65 chirps, 6.8 dB over the noise at best: sampled where they fall, their
+    power repeats whole every third flash (94.95 chirps, 0.05 from whole), the flash period itself under a quarter
+    of that and lost in the noise (the old test, a repeat of 0.3 at k = 2-4, passed such periods as whole)."""
+    found = flashes.power_period(_flash_train(8000, 31.65, amplitudes=(2.2,), width_chirps=0.3),
+                                 prf_hz=PRF_HZ, min_period_s=1 / 3000)
+    assert found.period_s * PRF_HZ == pytest.approx(3 * 31.65, rel=0.01)
+    assert not found.whole
+
+
+@pytest.mark.parametrize("period", [105.3, 150.3, 190.3])
+def test_strong_equal_flashes_repeat_whole_at_their_period(period):
+    """Equal flashes a chirp long, 15.6 dB over the noise, every 105-190 chirps (the last near the longest
+    period searched, 200 chirps at 8 kHz): the power repeats whole at the flash period. Its later peaks are
+    read up to half the record (read up to the search's end, a period over half of it had none left to read,
+    and its verdict was a coin toss)."""
+    found = flashes.power_period(_flash_train(20000, period, amplitudes=(6.0,), width_chirps=1.0),
+                                 prf_hz=PRF_HZ, min_period_s=1 / 3000)
+    assert found.period_s * PRF_HZ == pytest.approx(period, rel=0.003)
+    assert found.whole
+
+
 def test_a_power_that_repeats_smoothly_is_not_flashes():
     """Two lines 250 Hz apart beat: their power is a sinusoid of period 4 ms, its autocorrelation peak half
     its lag wide. A speckled echo lit half of every 10 ms (a broad pulse, as a wing's) has a peak as wide.
