@@ -83,13 +83,15 @@ def test_a_power_period_that_is_a_multiple_of_the_flashes_is_not_whole(amplitude
     assert not found.whole
 
 
-def test_a_weak_stroboscopic_multiple_is_not_whole():
-    """Flashes 0.3 chirp long every 31.65 chirps, 6.8 dB over the noise at best: sampled where they fall, their
-    power repeats whole every third flash (94.95 chirps, 0.05 from whole), the flash period itself under a quarter
-    of that and lost in the noise (the old test, a repeat of 0.3 at k = 2-4, passed such periods as whole)."""
-    found = flashes.power_period(_flash_train(8000, 31.65, amplitudes=(2.2,), width_chirps=0.3),
+@pytest.mark.parametrize("period, multiple", [(27.35, 3), (29.45, 2), (32.45, 2)])
+def test_a_weak_stroboscopic_multiple_is_not_whole(period, multiple):
+    """Flashes 0.3 chirp long, 6.8 dB over the noise at best: sampled where they fall, their power repeats whole
+    every 2nd or 3rd flash, the flash period itself weaker than a third of that and lost in the noise. The
+    former test (no repeat of 0.3 at a half, third or quarter) passed these periods as whole; a sub-period of
+    0.15 could not clear 3 standard errors here, so nothing rules it out: not whole."""
+    found = flashes.power_period(_flash_train(8000, period, amplitudes=(2.2,), width_chirps=0.3),
                                  prf_hz=PRF_HZ, min_period_s=1 / 3000)
-    assert found.period_s * PRF_HZ == pytest.approx(3 * 31.65, rel=0.01)
+    assert found.period_s * PRF_HZ == pytest.approx(multiple * period, rel=0.01)
     assert not found.whole
 
 

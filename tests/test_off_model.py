@@ -350,26 +350,16 @@ def test_a_flap_glide_cycle_is_not_the_wingbeat(tmp_path):
     assert row["wingbeat_freq_hz"] == pytest.approx(3.96801, rel=0.01)
 
 
-def test_rotor_lines_beating_are_no_wingbeat(tmp_path):
-    """A quadrotor flying 3.6 m/s at X band, -7.2 dB per IF sample, two rotor pairs 1.1 rev/s apart (a scene of
-    the default sweep, its clutter left out): no comb or flashes stand out, but its 3rd, 4th and 8th chopping
-    harmonics, single Doppler rows, beat at about k x 2.2 Hz. Read with the wing rows, they made a 4.16 Hz
-    "wingbeat" and a `bird` (old code). A lit row between unlit ones is a line, not wings: no wingbeat."""
-    radar = dict(f_start_hz=9.8e9, f_stop_hz=10.05e9, ramp_up_s=34.497e-6, chirp_period_s=43.1213e-6,
-                 sample_rate_hz=3710467.580601212, n_samples=128, n_chirps=17817, n_channels=1)
-    quad = {"name": "quad", "type": "multirotor", "elevation_deg": 25.7175, "body_rcs_m2": 0.00114284,
-            "body_scatterers": [{"offset_m": [0.05, 0.0, -0.06], "rcs_m2": 0.00253784}],
-            "motion": {"position_m": [21.794, 0.219843, 11.0642], "velocity_mps": [-0.656528, 3.54472, 0.0],
-                       "sway_amplitude_m": [0.0365384, 0.04832, 0.0463311], "sway_period_s": 4.30346},
-            "rotors": {"count": 4, "blade_profile": "tapered", "tip_reflectivity": 0.627739, "root_m": 0.01,
-                       "phase_deg": [0.548067, 213.321, 350.043, 10.7514], "blade_rcs_m2": 0.000768456,
-                       "rate_wander_fraction": 0.011247, "rate_wander_period_s": 1.93149,
-                       "tilt_deg": [-3.18364, -0.776636, -0.986428, -1.29682], "blades": 2, "arm_m": 0.233852,
-                       "blade_length_m": 0.101253, "rev_per_s": [65.6352, -66.8337, 65.7554, -66.7455]}}
-    path, _ = simulate(tmp_path, scene_mapping(radar, [quad], noise={"moving_snr_db": -7.21955}, seed=1475863907))
+def test_rotors_evenly_phased_at_one_rate_do_not_tell_n(tmp_path):
+    """Four equal 2-blade rotors at exactly 80 rev/s, 45 deg apart: their phases cancel all but every fourth
+    line of the 160 Hz chopping comb, and their flashes, evenly spaced, come 4 times per spacing, as 4 blades
+    turning at 160 rev/s would. Rotors at one rate cannot tell N so: no rotation is given as measured (the
+    power confirms a line pattern only on combs of rotors resolved at rates apart)."""
+    path, _ = simulate(tmp_path, scene_mapping(XBAND_LONG, [drone((80.0,) * 4, phase_deg=(0, 45, 90, 135))],
+                                               noise={"snr_db": 10.0}, seed=3))
     row = process_capture(path, ProcessParams()).rows[0]
-    assert row["class"] != "bird"
-    assert row["wingbeat_freq_hz"] is None and row["wingbeat_freq_hz_status"] == "no_wingbeat"
+    assert row["class"] == "drone"
+    assert row["n_blades_source"] != "measured" and row["rotation_rate_hz_status"] != "ok"
 
 
 def test_chopping_not_read_at_a_multiple_of_the_comb(tmp_path):

@@ -344,7 +344,7 @@ def _folded_comb_by_power(found, comb_hz, *, n_blades):
     the blade count ``n_blades`` (given or measured), else None.
 
     The power of N blades repeats 1 (even N) or 1-2 (odd N) times per chopping period; the comb is the
-    chopping frequency or, one blade differing, the turn rate. With N given, the power's rate over the comb's
+    chopping frequency or, one blade differing, the turn rate. With N, the power's rate over the comb's
     tells which: 1 or 2 (odd N) times it, the chopping; N or 2N (odd N) times, the turn rate. Only a power that repeats
     whole (``found``, a :class:`~mdpipe.process.flashes.PowerPeriod` or None) is read.
     """
@@ -514,15 +514,15 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     N given, by the echo repeating each 1/N turn, or by the echo's power (``power``, a
     :class:`~mdpipe.process.flashes.PowerPeriod` or None) flashing as N blades turning at the comb's rate
     do, when that is more than twice per spacing (N > 2: a comb of equal blades at the chopping frequency
-    flashes once or twice per spacing, as two blades turning at it do). Folded (aliased) combs tell N only
-    by the power (their lines interleave orders: the pattern alone, even of the N given, is not trusted).
+    flashes once or twice per spacing, as two blades turning at it do; :func:`_power_flashes_as`). Folded
+    (aliased) combs tell N only by the power (their lines interleave orders: the pattern alone, even of the N
+    given, is not trusted).
     """
     pattern = combs.blade_count_from_line_pattern(lines, float(spacing_hz[0]), half_width_hz=band_hz)
-    if pattern:
-        flashes_hz = rotor.flashes_per_revolution(pattern) * float(np.median(spacing_hz))
-        if (pattern == n_blades and not aliased) or (rotor.flashes_per_revolution(pattern) > 2 and power is not None
-                                                     and abs(1.0 / power.period_s / flashes_hz - 1) <= AGREEMENT):
-            return spacing_hz * pattern, pattern
+    if pattern and pattern == n_blades and not aliased:
+        return spacing_hz * pattern, pattern
+    if pattern and _power_flashes_as(pattern, spacing_hz, power):
+        return spacing_hz * pattern, pattern
     if aliased:
         return spacing_hz, None
     if pattern:
@@ -534,6 +534,22 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
         if at(turn / pattern) >= TAGGED_REPEAT and at(turn) > at(turn / pattern):
             return spacing_hz * pattern, pattern
     return spacing_hz, combs.blade_count_from_sublines(lines, float(spacing_hz[0]), half_width_hz=band_hz)
+
+
+def _power_flashes_as(pattern, spacing_hz, power):
+    """Whether the echo's power (a whole :class:`~mdpipe.process.flashes.PowerPeriod`) flashes as ``pattern``
+    blades turning at the comb's rate do, where that is more than twice per spacing, on combs of rotors resolved
+    at different rates.
+
+    Rotors at one rate whose phases cancel some lines leave a line pattern, and their flashes, evenly spaced,
+    can come as often as N blades' (four 2-blade rotors 45 deg apart: every fourth line, four flashes per
+    spacing, read N = 4 at twice the rate); rotors at rates apart drift through each other's phases.
+    """
+    if power is None or not power.whole or len(spacing_hz) < 2:  # the combs resolve rotors at rates apart
+        return False
+    flashes_per_turn = rotor.flashes_per_revolution(pattern)
+    flashes_hz = flashes_per_turn * float(np.median(spacing_hz))
+    return flashes_per_turn > 2 and abs(1.0 / power.period_s / flashes_hz - 1) <= AGREEMENT
 
 
 def _blade_count(measured, parity, *, n_blades):

@@ -43,17 +43,10 @@ def pattern_autocorrelation(spec, *, detrend_frames, noise_level, row_percentile
     """Time autocorrelation of the detrended log-spectrogram, summed over Doppler, normalised (unbiased).
 
     Only Doppler rows whose power stands ``SIGNAL_ROW_DB`` above ``noise_level`` (per bin) in
-    ``100 - row_percentile`` % of the frames take part: rows of noise would only dilute the pattern. A lit row
-    between two unlit ones is a line, not wings (a wing's Doppler sweeps through neighbouring bins): a
-    rotor's harmonics, whose rotors a little apart in rate beat in them (a quadrotor read a 4.16 Hz
-    "wingbeat" there, its rows lit at 3, 4 and 8 x 131-134 Hz), do not take part.
+    ``100 - row_percentile`` % of the frames take part: rows of noise would only dilute the pattern.
     """
     power = spec.power[np.abs(spec.f_hz) <= MAX_MICRO_DOPPLER_HZ]
-    lit = np.percentile(power, row_percentile, axis=1) > noise_level * 10 ** (SIGNAL_ROW_DB / 10)
-    neighbour = np.zeros_like(lit)
-    neighbour[1:] |= lit[:-1]
-    neighbour[:-1] |= lit[1:]
-    power = power[lit & neighbour]
+    power = power[np.percentile(power, row_percentile, axis=1) > noise_level * 10 ** (SIGNAL_ROW_DB / 10)]
     if len(power) == 0:
         return np.zeros(spec.power.shape[1])
     rows = np.log(power + np.finfo(float).tiny)
