@@ -6,6 +6,7 @@ Each measurement is one function returning :class:`~mdpipe.process.validity.Meas
 :func:`analyse_target` puts them in the row.
 """
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -348,23 +349,26 @@ def _folded_comb_by_power(found, comb_hz, *, n_blades):
     tells which: 1 or 2 (odd N) times it, the chopping; N or 2N (odd N) times, the turn rate. Only a power that repeats
     whole (``found``, a :class:`~mdpipe.process.flashes.PowerPeriod` or None) is read.
     """
-    if n_blades is None:
-        return None
-    if found is None or not found.whole:
+    if n_blades is None or found is None or not found.whole:
         return None
     ratio = 1.0 / found.period_s / float(np.median(comb_hz))
     per_chop = rotor.flashes_per_revolution(n_blades) // n_blades
     for factor, chopping_hz in ((1, comb_hz), (per_chop, comb_hz), (n_blades, comb_hz * n_blades),
                                 (per_chop * n_blades, comb_hz * n_blades)):
-        if abs(ratio / factor - 1) <= AGREEMENT:
+        if _agrees(ratio, factor):
             return chopping_hz
     return None
+
+
+def _agrees(ratio, factor=1.0):
+    """Whether ``ratio`` is ``factor`` within ``AGREEMENT``."""
+    return abs(ratio / factor - 1) <= AGREEMENT
 
 
 def _whole_ratio(ratio):
     """The whole number k (2..6) with ratio ~ k or 1/k, else 0."""
     for k in range(2, 7):
-        if abs(ratio / k - 1) <= AGREEMENT or abs(ratio * k - 1) <= AGREEMENT:
+        if _agrees(ratio, k) or _agrees(ratio * k):
             return k
     return 0
 
@@ -409,7 +413,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         if offset_hz is not None:
             micro = micro * np.exp(-2j * np.pi * offset_hz * np.arange(len(micro)) / prf_hz)
     lines = combs.line_spectrum(micro, prf_hz=prf_hz, noise_power=noise_power)  # shared by the comb and N tests
-    power = power_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
+    # the echo's power period, read only where a path needs it (an FFT of the dwell: 24 ms for 35k chirps)
+    power = functools.cache(lambda: power_period(difference(demodulated), prf_hz=prf_hz,
+                                                 min_period_s=1.0 / combs.MAX_CHOP_HZ))
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             lines=lines)
     timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
@@ -424,7 +430,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
         ratio = timed_hz / centre
-        if aliased and abs(ratio / 2 - 1) <= AGREEMENT:
+        if aliased and _agrees(ratio, 2):
             # the flash times twice the comb: an odd N flashes twice per chopping period (the comb is the
             # chopping), or the comb is the turn rate of an even N with one blade differing (the flash times are)
             known = n_blades if n_blades is not None else measured_n
@@ -437,10 +443,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                 timed_hz, ratio = timed_hz / 2, ratio / 2
             else:
                 chopping_hz, ratio = np.array([timed_hz]), 1.0
-        if abs(ratio - 1) <= AGREEMENT:
+        if _agrees(ratio):
             if len(chopping_hz) == 1:
                 chopping_hz = np.array([timed_hz])
-        elif measured_n and abs(ratio * measured_n - 1) <= AGREEMENT:
+        elif measured_n and _agrees(ratio * measured_n):
             # one blade differs: the echo repeats once a turn, the comb is its N-fold chopping
             if len(chopping_hz) == 1:
                 chopping_hz = np.array([timed_hz * measured_n])
@@ -451,7 +457,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
             return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
     elif chopping_hz is not None and aliased:
-        confirmed = _folded_comb_by_power(power, chopping_hz, n_blades=n_blades if n_blades is not None else measured_n)
+        confirmed = _folded_comb_by_power(power(), chopping_hz,
+                                          n_blades=n_blades if n_blades is not None else measured_n)
         if confirmed is None:
             note = (f"rotation not estimable: a folded line comb at {float(np.median(chopping_hz)):.4g} Hz that "
                     "neither the flash times nor the power's period confirm (folded combs can coincide by chance)")
@@ -462,7 +469,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     elif timed_hz is not None:  # the echo's period: one blade passage
         chopping_hz = np.array([timed_hz])
     if chopping_hz is None:
-        weak = _power_flashes(power, n_blades=n_blades)
+        weak = _power_flashes(power(), n_blades=n_blades)
         if weak is not None:
             return weak
         if slowest_hz > combs.MIN_CHOP_HZ:
@@ -473,7 +480,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(withheld("no_flashes", note), withheld("no_flashes", note))
     fastest_mps = 2 * np.pi * float(chopping_hz.max()) * MIN_BLADE_REACH_M
     if not aliased and halfwidth_mps is not None and halfwidth_mps < fastest_mps:
-        weak = _power_flashes(power, n_blades=n_blades)
+        weak = _power_flashes(power(), n_blades=n_blades)
         if weak is not None:
             return weak
         note = (f"rotation not estimable: a comb at {np.median(chopping_hz):.4g} Hz in a micro-Doppler only "
@@ -505,13 +512,13 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     return Rotation(chopping, measured, rates, blades, source)
 
 
-def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None, power=None):
+def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None, power=lambda: None):
     """Chopping frequencies from comb spacings, and the blade count where the line pattern tells it.
 
     A comb whose every N-th line stands out is a rotor's turn seen through one blade that differs:
     its chopping frequency is N times the spacing. A comb with weaker lines between its lines is the
     chopping comb of such a rotor. Either way N is measured. A pattern of every N-th line is confirmed by
-    N given, by the echo repeating each 1/N turn, or by the echo's power (``power``, a
+    N given, by the echo repeating each 1/N turn, or by the echo's power (``power()``, a
     :class:`~mdpipe.process.flashes.PowerPeriod` or None) flashing as N blades turning at the comb's rate
     do, when that is more than twice per spacing (N > 2: a comb of equal blades at the chopping frequency
     flashes once or twice per spacing, as two blades turning at it do; :func:`_power_flashes_as`). Folded
@@ -521,7 +528,7 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     pattern = combs.blade_count_from_line_pattern(lines, float(spacing_hz[0]), half_width_hz=band_hz)
     if pattern and pattern == n_blades and not aliased:
         return spacing_hz * pattern, pattern
-    if pattern and _power_flashes_as(pattern, spacing_hz, power):
+    if pattern and _power_flashes_as(pattern, spacing_hz, power()):
         return spacing_hz * pattern, pattern
     if aliased:
         return spacing_hz, None
@@ -549,7 +556,7 @@ def _power_flashes_as(pattern, spacing_hz, power):
         return False
     flashes_per_turn = rotor.flashes_per_revolution(pattern)
     flashes_hz = flashes_per_turn * float(np.median(spacing_hz))
-    return flashes_per_turn > 2 and abs(1.0 / power.period_s / flashes_hz - 1) <= AGREEMENT
+    return flashes_per_turn > 2 and _agrees(1.0 / power.period_s / flashes_hz)
 
 
 def _blade_count(measured, parity, *, n_blades):

@@ -60,11 +60,13 @@ def pattern_autocorrelation(spec, *, detrend_frames, noise_level, row_percentile
 def _period(r, *, frame_rate):
     """The wingbeat period in a pattern autocorrelation ``r`` (a Period or None): a single-repeat period gives way
     to a shorter one, up to ``SHORTER_SHARE`` of it, seen to repeat with ``MIN_PERIODICITY``."""
-    found = period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
-                                        max_period_s=1.0 / MIN_WINGBEAT_HZ, repeat_share=REPEAT_SHARE)
+    def up_to(max_period_s):
+        return period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
+                                           max_period_s=max_period_s, repeat_share=REPEAT_SHARE)
+
+    found = up_to(1.0 / MIN_WINGBEAT_HZ)
     if found is not None and found.repeats == 1:
-        shorter = period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
-                                              max_period_s=SHORTER_SHARE * found.period_s, repeat_share=REPEAT_SHARE)
+        shorter = up_to(SHORTER_SHARE * found.period_s)
         if shorter is not None and shorter.repeats >= 2 and shorter.strength >= MIN_PERIODICITY:
             return shorter
     return found
