@@ -54,12 +54,13 @@ def _parabolic_peak(r, index):
     return index + float(parabolic_offset(r[index - 1], r[index], r[index + 1]))
 
 
-def _repeats(prominence, lag, limit, untestable, share=REPEAT_SHARE):
-    """The peak at ``lag`` recurs at 2 lag (and 3 lag below ``limit``) with ``share`` of its prominence.
+def _repeats(prominence, lag, limit, untestable, share=REPEAT_SHARE, max_order=3):
+    """The peak at ``lag`` recurs at 2 lag (and up to ``max_order`` lag below ``limit``) with ``share`` of its
+    prominence.
 
     ``untestable``: what to answer when 2 lag lies beyond ``limit`` (the record holds under three periods).
     """
-    for k in (2, 3):
+    for k in range(2, max_order + 1):
         if k * lag >= limit:
             return k > 2 or untestable
         half = max(2, int(0.02 * lag))  # the coarse lag is good to a sample: an offset peak nearby must not count
@@ -84,14 +85,15 @@ def lag_range(n, *, sample_rate_hz, min_period_s, max_period_s):
 
 
 def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s, repeat_share=0.5,
-                                recur_share=REPEAT_SHARE):
+                                recur_share=REPEAT_SHARE, max_order=3):
     """The fundamental period in a normalised autocorrelation ``r`` (lag 0 first).
 
     Lags up to half the record are searched (two repeats at least). Strength is the peak's height
     above the running minimum over one shortest candidate period (a baseline that the decay of a
     broadband echo does not raise). Repeats at k T are looked for, and the period refined on them,
     at lags below ``repeat_share`` of the record (an unbiased autocorrelation at lag L rests on
-    ``n - L`` products); a peak at 2T (and 3T) must stand with ``recur_share`` of T's prominence.
+    ``n - L`` products); a peak at 2T (and up to ``max_order`` T) must stand with ``recur_share`` of T's
+    prominence.
     With ``repeat_share`` above 1/2 a period whose double lies beyond it (two or fewer periods in the
     record) is kept with ``repeats = 1``: the caller decides on its strength.
     """
@@ -107,7 +109,8 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     heights = prominence[peaks]
     limit = int(repeat_share * len(r))
     first = next((p for p in peaks[heights >= FUNDAMENTAL_SHARE * heights.max()]
-                  if _repeats(prominence, p, limit, untestable=repeat_share > 0.5, share=recur_share)), None)
+                  if _repeats(prominence, p, limit, untestable=repeat_share > 0.5, share=recur_share,
+                                   max_order=max_order)), None)
     if first is None:
         return None
     coarse = _parabolic_peak(r, first)

@@ -37,6 +37,23 @@ REPEAT_SHARE = 0.8  # repeats looked for up to 80 % of the record: three wingbea
 MIN_PERIODICITY = 0.2         # autocorrelation prominence a wingbeat needs
 MIN_SINGLE_PERIODICITY = 0.4  # ... when the record holds only two wingbeats and the repeat cannot be seen
 SHORTER_SHARE = 1 / 3         # a single-repeat period gives way to a repeating one up to a third of it
+FLAP_SMOOTH_S = 0.25          # flapping frames: the wing rows' lit share averaged over this ...
+FLAP_SHARE = 0.5              # ... reaches this share of its 95th percentile
+MIN_GLIDE_SHARE = 0.1         # the gated look reads a bird that glides in this share of the dwell at least
+MIN_PAIRED_SHARE = 0.5        # ... and a period that half its flapping frames see repeat (two beats in a row)
+
+
+def _lit_rows(spec, noise_level, row_percentile):
+    """The Doppler rows within ``MAX_MICRO_DOPPLER_HZ`` whose power stands ``SIGNAL_ROW_DB`` above
+    ``noise_level`` (per bin) in ``100 - row_percentile`` % of the frames."""
+    power = spec.power[np.abs(spec.f_hz) <= MAX_MICRO_DOPPLER_HZ]
+    return power[np.percentile(power, row_percentile, axis=1) > noise_level * 10 ** (SIGNAL_ROW_DB / 10)]
+
+
+def _lag_products(rows):
+    """Sum over lags 0 .. n - 1 of ``x(t) x(t + lag)`` of each row of ``rows`` (FFT based, not normalised)."""
+    n = rows.shape[-1]
+    return np.fft.irfft(np.abs(np.fft.rfft(rows, n=2 * n, axis=-1)) ** 2, axis=-1)[..., :n]
 
 
 def pattern_autocorrelation(spec, *, detrend_frames, noise_level, row_percentile=50):
@@ -45,16 +62,50 @@ def pattern_autocorrelation(spec, *, detrend_frames, noise_level, row_percentile
     Only Doppler rows whose power stands ``SIGNAL_ROW_DB`` above ``noise_level`` (per bin) in
     ``100 - row_percentile`` % of the frames take part: rows of noise would only dilute the pattern.
     """
-    power = spec.power[np.abs(spec.f_hz) <= MAX_MICRO_DOPPLER_HZ]
-    power = power[np.percentile(power, row_percentile, axis=1) > noise_level * 10 ** (SIGNAL_ROW_DB / 10)]
+    power = _lit_rows(spec, noise_level, row_percentile)
     if len(power) == 0:
         return np.zeros(spec.power.shape[1])
     rows = np.log(power + np.finfo(float).tiny)
     rows = rows - moving_average(rows, max(1, detrend_frames), axis=1)
     n = rows.shape[1]
-    spectra = np.fft.rfft(rows, n=2 * n, axis=1)
-    r = np.fft.irfft(np.abs(spectra) ** 2, axis=1)[:, :n].sum(axis=0) / np.arange(n, 0, -1)
+    r = _lag_products(rows).sum(axis=0) / np.arange(n, 0, -1)
     return r / r[0] if r[0] > 0 else r
+
+
+def flapping_frames(rows, *, noise_level, frame_rate):
+    """Frames in which a bird flaps: where the share of ``rows`` (its wing rows) lit ``SIGNAL_ROW_DB`` above
+    ``noise_level``, averaged over ``FLAP_SMOOTH_S``, reaches ``FLAP_SHARE`` of its 95th percentile (the
+    strokes light the rows unevenly within a beat; a glide leaves them dark)."""
+    lit = (rows > noise_level * 10 ** (SIGNAL_ROW_DB / 10)).mean(axis=0)
+    smooth = moving_average(lit, max(1, int(round(FLAP_SMOOTH_S * frame_rate))))
+    return smooth >= FLAP_SHARE * np.percentile(smooth, 95)
+
+
+def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate):
+    """The pattern autocorrelation of a bird that glides between flapping bursts, over its bursts only.
+
+    The rows lit in a quarter of the frames are read in the frames :func:`flapping_frames` marks, each
+    burst less its own mean per row (the bursts' on and off are no pattern); the products of each lag are
+    averaged over the pairs of flapping frames that lag apart. Returns ``(r, paired)``: ``r`` normalised
+    to 1 at lag 0, up to the last lag resting on ``FLAP_SMOOTH_S`` of pairs, and ``paired`` the share of
+    the flapping frames with a flapping partner that lag on; None where the rows show no glide (frames
+    not flapping in under ``MIN_GLIDE_SHARE`` of the dwell), no flapping, or no lit row.
+    """
+    rows = _lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1])
+    if len(rows) == 0:
+        return None
+    flapping = flapping_frames(rows, noise_level=noise_level, frame_rate=frame_rate)
+    if not flapping.any() or flapping.mean() > 1 - MIN_GLIDE_SHARE:
+        return None
+    rows = np.log(rows + np.finfo(float).tiny)
+    bursts = np.flatnonzero(np.diff(np.concatenate([[0], flapping.astype(int), [0]]))).reshape(-1, 2)
+    centred = np.zeros_like(rows)
+    for start, stop in bursts:
+        centred[:, start:stop] = rows[:, start:stop] - rows[:, start:stop].mean(axis=1, keepdims=True)
+    pairs = np.rint(_lag_products(flapping.astype(float)))
+    usable = int(np.argmax(pairs < max(1.0, FLAP_SMOOTH_S * frame_rate))) or len(pairs)
+    r = _lag_products(centred).sum(axis=0)[:usable] / pairs[:usable]
+    return (r / r[0] if r[0] > 0 else r), pairs[:usable] / pairs[0]
 
 
 def _period(r, *, frame_rate):
@@ -100,4 +151,23 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
             return found
         if found.repeats == 1 and found.strength >= MIN_SINGLE_PERIODICITY and single is None:
             single = found
-    return single
+    return single or _gated_period(spec, noise_level=noise_level, frame_rate=frame_rate)
+
+
+def _gated_period(spec, *, noise_level, frame_rate):
+    """The wingbeat within the flapping bursts of a bird that glides between them (a Period or None).
+
+    Read on :func:`gated_pattern_autocorrelation`, with the gates of the other looks; the repeat is looked
+    for at 2T only (a burst holds few beats and the wingbeat drifts between bursts), and the period must
+    repeat within the bursts in ``MIN_PAIRED_SHARE`` of the flapping frames.
+    """
+    gated = gated_pattern_autocorrelation(spec, noise_level=noise_level, frame_rate=frame_rate)
+    if gated is None:
+        return None
+    r, paired = gated
+    found = period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
+                                        max_period_s=1.0 / MIN_WINGBEAT_HZ, repeat_share=REPEAT_SHARE, max_order=2)
+    if found is None or paired[found.peak_lag] < MIN_PAIRED_SHARE:
+        return None
+    needed = MIN_PERIODICITY if found.repeats >= 2 else MIN_SINGLE_PERIODICITY
+    return found if found.strength >= needed else None
