@@ -69,3 +69,12 @@ def test_bursts_under_two_beats_give_no_wingbeat():
 def test_a_bird_that_never_glides_is_not_read_gated():
     spec, _ = bursts_pattern(flap_s=10.0, glide_s=0.1)
     assert wingbeat.gated_pattern_autocorrelation(spec, noise_level=1.0, frame_rate=FRAME_RATE_HZ) is None
+
+
+def test_flapping_shorter_than_the_smoothing_is_not_read_gated():
+    """A record of 0.64 s flapping its first 0.2 s: fewer flapping frames than the lags need (a quarter second
+    of pairs), no pattern (and no lag divided by zero pairs)."""
+    spec, _ = bursts_pattern(flap_s=0.2, glide_s=1.0, dwell_s=0.64)
+    marked = wingbeat.flapping_frames(spec.power, noise_level=1.0, frame_rate=FRAME_RATE_HZ)
+    assert 0 < marked.sum() < wingbeat.FLAP_SMOOTH_S * FRAME_RATE_HZ and len(wingbeat._lit_rows(spec, 1.0, 75))
+    assert wingbeat.gated_pattern_autocorrelation(spec, noise_level=1.0, frame_rate=FRAME_RATE_HZ) is None

@@ -16,6 +16,10 @@ A period whose repeat the record cannot hold (two periods in the dwell) is taken
 strength of one seen to repeat, and it gives way to a shorter period of the same pattern that is seen
 to repeat: the cycle of a bird flapping 1 s and gliding 0.5 s repeats whole (a crow read at 0.66 Hz,
 its flap-glide cycle, for 3.97 Hz), the wingbeats within it repeat too.
+
+Where neither row set gives a period, a bird whose bursts hold only a few beats (the glides between
+them decay the whole record's pattern below the repeat test) is read over its flapping frames only
+(:func:`gated_pattern_autocorrelation`): four geese and a pigeon of the evaluation sweep, `none` before.
 """
 
 import numpy as np
@@ -89,7 +93,8 @@ def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate):
     averaged over the pairs of flapping frames that lag apart. Returns ``(r, paired)``: ``r`` normalised
     to 1 at lag 0, up to the last lag resting on ``FLAP_SMOOTH_S`` of pairs, and ``paired`` the share of
     the flapping frames with a flapping partner that lag on; None where the rows show no glide (frames
-    not flapping in under ``MIN_GLIDE_SHARE`` of the dwell), no flapping, or no lit row.
+    not flapping in under ``MIN_GLIDE_SHARE`` of the dwell), flapping for under ``FLAP_SMOOTH_S``, or no lit
+    row.
     """
     rows = _lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1])
     if len(rows) == 0:
@@ -103,7 +108,10 @@ def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate):
     for start, stop in bursts:
         centred[:, start:stop] = rows[:, start:stop] - rows[:, start:stop].mean(axis=1, keepdims=True)
     pairs = np.rint(_lag_products(flapping.astype(float)))
-    usable = int(np.argmax(pairs < max(1.0, FLAP_SMOOTH_S * frame_rate))) or len(pairs)
+    too_few = pairs < max(1.0, FLAP_SMOOTH_S * frame_rate)
+    if too_few[0]:
+        return None
+    usable = int(np.argmax(too_few)) or len(pairs)
     r = _lag_products(centred).sum(axis=0)[:usable] / pairs[:usable]
     return (r / r[0] if r[0] > 0 else r), pairs[:usable] / pairs[0]
 
@@ -131,7 +139,7 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
     holds ``BAND_BINS`` Doppler bins at the shorter frame (down to ``MIN_FRAME_S``). Each row set of
     ``SIGNAL_ROW_PERCENTILES`` gives a period; the first seen to repeat with ``MIN_PERIODICITY`` is taken,
     else the first whose repeat the record cannot hold (two wingbeats in the dwell) with
-    ``MIN_SINGLE_PERIODICITY``.
+    ``MIN_SINGLE_PERIODICITY``, else the period within flapping bursts (:func:`_gated_period`).
     """
     frame_s = min(FRAME_S, len(demodulated) / prf_hz / 8)
     if band_hz:
