@@ -102,8 +102,7 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
         return None
     baseline = running_min(r, 2 * lo + 1)
     prominence = r - baseline
-    seg = r[lo:hi]
-    peaks = local_maxima(seg) + lo
+    peaks = local_maxima(r[lo - 1:hi]) + lo - 1  # lag lo too is a peak when above lag lo - 1
     if len(peaks) == 0:
         return None
     heights = prominence[peaks]

@@ -1,0 +1,26 @@
+"""The fundamental period in an autocorrelation (:func:`mdpipe.process.periodicity.period_from_autocorrelation`)
+at the edges of the searched lags."""
+
+import numpy as np
+import pytest
+
+from mdpipe.process.periodicity import period_from_autocorrelation
+
+
+def cosine_autocorrelation(period_samples, n=400):
+    return np.cos(2 * np.pi * np.arange(n) / period_samples)
+
+
+def test_a_period_whose_peak_is_the_shortest_lag_searched():
+    """A period of 4.3 samples with 3.5 the shortest searched: its peak is lag 4, the first lag searched. Taken
+    only between two neighbours inside the range, the peak was missed and the period read at 2T (8.6)."""
+    found = period_from_autocorrelation(cosine_autocorrelation(4.3), sample_rate_hz=1.0, min_period_s=3.5,
+                                        max_period_s=50.0)
+    assert found.period_s == pytest.approx(4.3, rel=0.01)
+
+
+def test_no_peak_below_the_shortest_lag_searched():
+    """A period of 3 samples, 3.5 the shortest searched: the lag-3 peak is not one (its multiple 6 is)."""
+    found = period_from_autocorrelation(cosine_autocorrelation(3.0), sample_rate_hz=1.0, min_period_s=3.5,
+                                        max_period_s=50.0)
+    assert found.peak_lag >= 4 and found.period_s == pytest.approx(6.0, rel=0.01)
