@@ -481,10 +481,29 @@ def test_wingbeat_within_short_flapping_bursts(tmp_path, radar, goose, snr_db, s
 def test_flapping_bursts_under_two_beats_give_no_wingbeat(tmp_path):
     """The K-band goose flapping 0.6 s (1.5 beats) and gliding 0.6 s. Read with the products of frames in
     different bursts, its period came out 1.45 Hz (status ok) for 2.42: its bursts, ramps included, nearly
-    merge. Within a burst no two periods fit: no wingbeat, and no bird."""
+    merge. Within a burst two of its periods do not fit; the lag that does, near half the period (4.65 Hz),
+    stands 0.25, under the 0.4 a period needs whose repeat the bursts cannot hold: no wingbeat, no bird."""
     goose = GOOSE_K | {"flap_glide": {"flap_s": 0.6, "glide_s": 0.6}}
     path, _ = simulate(tmp_path, scene_mapping(K_BAND_GOOSE, [goose], noise={"moving_snr_db": 1.86365},
                                                seed=261185322))
     row = process_capture(path, ProcessParams()).rows[0]
     assert row["wingbeat_freq_hz"] is None and row["wingbeat_freq_hz_status"] == "no_wingbeat"
     assert row["class"] == "none"
+
+
+def test_a_fast_wingbeat_within_one_frame_is_read_again_sharper(tmp_path):
+    """A sparrow of the default sweep (clutter left out) beating 14.6 Hz in one 0.56 s burst at K band: its
+    narrow band sets 63 ms frames, about one period. Its peak sat on the shortest lag searched, which was
+    never taken (old code: `none`); taken, it read 15.7 Hz (7.6 % off), the frames' overlap pulling it in.
+    Read again in frames of a quarter of the period, it comes within 3 %."""
+    radar = dict(f_start_hz=24.0e9, f_stop_hz=24.1e9, ramp_up_s=229.968e-6, chirp_period_s=287.46e-6,
+                 sample_rate_hz=556599.1795728102, n_samples=128, n_chirps=3078, n_channels=2)
+    sparrow = {"name": "sparrow", "type": "bird", "a1_deg": 39.724, "a2_deg": 25.2563,
+               "flap_glide": {"flap_s": 0.559984, "glide_s": 1.15585}, "wingbeat_drift_fraction": 0.00195573,
+               "wing_roughness": 0.0709648, "wingbeat_hz": 14.6148, "upper_arm_m": 0.0554441,
+               "forearm_m": 0.0564601, "body_rcs_m2": 0.000782688, "wing_rcs_m2": 0.000670053,
+               "motion": {"position_m": [27.3903, -4.39612, 22.5393], "velocity_mps": [5.9441, -6.85408, 0.0]}}
+    path, _ = simulate(tmp_path, scene_mapping(radar, [sparrow], noise={"moving_snr_db": 2.61041}, seed=1350296078))
+    row = process_capture(path, ProcessParams()).rows[0]
+    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
+    assert row["wingbeat_freq_hz"] == pytest.approx(14.6148, rel=0.03)

@@ -24,3 +24,11 @@ def test_no_peak_below_the_shortest_lag_searched():
     found = period_from_autocorrelation(cosine_autocorrelation(3.0), sample_rate_hz=1.0, min_period_s=3.5,
                                         max_period_s=50.0)
     assert found.peak_lag >= 4 and found.period_s == pytest.approx(6.0, rel=0.01)
+
+
+def test_a_peak_whose_vertex_lies_below_the_shortest_period_is_not_one():
+    """A period of 3.6 samples, 4 the shortest searched: the lag-4 peak's vertex lies at 3.6, under the range
+    (it read 3.65); its multiple, 7.2, is the shortest period in range."""
+    found = period_from_autocorrelation(cosine_autocorrelation(3.6), sample_rate_hz=1.0, min_period_s=4.0,
+                                        max_period_s=50.0)
+    assert found.period_s == pytest.approx(7.2, rel=0.01)

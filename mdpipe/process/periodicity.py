@@ -103,6 +103,8 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     baseline = running_min(r, 2 * lo + 1)
     prominence = r - baseline
     peaks = local_maxima(r[lo - 1:hi]) + lo - 1  # lag lo too is a peak when above lag lo - 1
+    if len(peaks) and _parabolic_peak(r, peaks[0]) < min_period_s * sample_rate_hz:
+        peaks = peaks[1:]  # a peak at lag lo whose vertex lies below the shortest period searched
     if len(peaks) == 0:
         return None
     heights = prominence[peaks]

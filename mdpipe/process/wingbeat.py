@@ -21,9 +21,9 @@ Where neither row set gives a period, a bird whose bursts hold only a few beats 
 them decay the whole record's pattern below the repeat test) is read within its flapping bursts only
 (:func:`gated_pattern_autocorrelation`): four geese and a pigeon of the evaluation sweep, `none` before.
 
-A period shorter than two frames is blurred by the frame (its lags lie within the frames' own overlap):
-it is read again with frames of half that period, and taken only where that look finds it too (a
-sparrow beating 14.6 Hz in 63 ms frames read 7.6 % off).
+A period under four frames is blurred by the frame (its lags lie within the frames' own overlap, and
+its peak can be missed for its double): it is read again with frames of a quarter of it (a sparrow
+beating 14.6 Hz in 63 ms frames read 7.6 % off, and at 14 Hz at X band as 7 Hz).
 """
 
 import numpy as np
@@ -48,9 +48,10 @@ SHORTER_SHARE = 1 / 3         # a single-repeat period gives way to a repeating 
 FLAP_SMOOTH_S = 0.25          # flapping frames: the wing rows' lit share averaged over this ...
 FLAP_SHARE = 0.5              # ... reaches this share of its 95th percentile
 MIN_GLIDE_SHARE = 0.1         # the gated look reads a bird that glides in this share of the dwell at least
-PAIR_SIGMAS = 3.0             # ... a period standing this many standard errors (1 / sqrt(pairs)) of its lag's mean
+PAIR_SIGMAS = 3.0             # ... a period standing this many standard errors of its lag's mean (Bartlett's)
 MIN_WING_ROWS = 3             # ... in this many Doppler rows at least (one or two lit rows are lines, not wings)
-BLUR_AGREEMENT = 0.15         # a period under two frames, read again in frames of half of it, is found within this
+BLURRED_FRAMES = 4            # a period under this many frames is read again in frames of a quarter of it ...
+BLUR_AGREEMENT = 0.15         # ... where it, or half of it, is found within this share (else withheld)
 
 
 def _lit_rows(spec, noise_level, row_percentile):
@@ -107,7 +108,7 @@ def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate):
     (the wingbeat's phase does not carry from one burst to the next). Returns ``(r, pairs)``: ``r``
     normalised to 1 at lag 0 (0 where the bursts hold no variation), over the lags resting on
     ``FLAP_SMOOTH_S`` of pairs at least, and ``pairs`` their number. A period is searched up to half those
-    lags: a burst must hold two of it, and a quarter second more. None where the rows show no glide (frames
+    lags (for one burst: two periods and a quarter second must fit in it). None where the rows show no glide (frames
     not flapping in under ``MIN_GLIDE_SHARE`` of the dwell), flap for under ``FLAP_SMOOTH_S``, or fewer than
     ``MIN_WING_ROWS`` rows are lit.
     """
@@ -159,19 +160,28 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
 
     The spectrogram frame is ``FRAME_S``, or shorter where the micro-Doppler band (``band_hz`` wide) still
     holds ``BAND_BINS`` Doppler bins at the shorter frame (down to ``MIN_FRAME_S``); see :func:`_looks`. A
-    period under two frames is read again with frames of half of it (not under ``MIN_FRAME_S``) and taken
-    from that look where it finds the period within ``BLUR_AGREEMENT``; else none is.
+    period T under ``BLURRED_FRAMES`` frames is read again with frames of T / ``BLURRED_FRAMES`` (not under
+    ``MIN_FRAME_S``): a frame blurs the lags up to its length, and the peak of a wingbeat there can be
+    missed for its double (a sparrow's 14 Hz read at 7 Hz in 64 ms frames). That look's period is taken
+    where it is T / 2 within ``BLUR_AGREEMENT``, or T and T is under two frames (the first frames blurred
+    it: a 14.6 Hz beat read 7.6 % off in 63 ms frames); T where it confirms T over two frames, finds none,
+    or cannot be shorter; none where it finds another period.
     """
     frame_s = min(FRAME_S, len(demodulated) / prf_hz / 8)
     if band_hz:
         frame_s = min(frame_s, max(MIN_FRAME_S, BAND_BINS / band_hz))
     found, window_s = _looks(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
-    if found is None or found.period_s >= 2 * window_s or window_s <= MIN_FRAME_S:
+    if found is None or found.period_s >= BLURRED_FRAMES * window_s:
         return found
-    again, _ = _looks(demodulated, prf_hz=prf_hz, noise_power=noise_power,
-                      frame_s=max(MIN_FRAME_S, found.period_s / 2))
-    if again is not None and abs(again.period_s / found.period_s - 1) <= BLUR_AGREEMENT:
+    again, shorter_s = _looks(demodulated, prf_hz=prf_hz, noise_power=noise_power,
+                              frame_s=max(MIN_FRAME_S, found.period_s / BLURRED_FRAMES))
+    if again is None or shorter_s >= window_s:  # nothing more seen, or no shorter frame (8 chirps at least)
+        return found
+    ratio = again.period_s / found.period_s
+    if abs(2 * ratio - 1) <= BLUR_AGREEMENT:  # the first look took the wingbeat's double
         return again
+    if abs(ratio - 1) <= BLUR_AGREEMENT:  # confirmed: under two frames the shorter frames read it sharper
+        return again if found.period_s < 2 * window_s else found
     return None
 
 
@@ -204,9 +214,10 @@ def _gated_period(spec, *, noise_level, frame_rate):
 
     Read on :func:`gated_pattern_autocorrelation` (two beats in a row in a burst at least) with the strengths
     the other looks need (``MIN_PERIODICITY`` seen to repeat at 2T, where the bursts hold 2T; else
-    ``MIN_SINGLE_PERIODICITY``), and ``PAIR_SIGMAS`` standard errors of the lag's mean at least
-    (``1 / sqrt(pairs)``: a few dozen pairs of noise correlate by chance); repeats at 3T are not asked for
-    (a burst holds few beats, and a drifting wingbeat falls short there).
+    ``MIN_SINGLE_PERIODICITY``), and ``PAIR_SIGMAS`` standard errors of the lag's mean at least (Bartlett's,
+    ``sqrt((1 + 2 sum r(k)^2) / pairs)`` over the lags k of frames that share chirps: a few dozen pairs of
+    overlapping frames of speckle correlate by chance); repeats at 3T are not asked for (a burst holds few
+    beats, and a drifting wingbeat falls short there).
     """
     gated = gated_pattern_autocorrelation(spec, noise_level=noise_level, frame_rate=frame_rate)
     if gated is None:
@@ -217,6 +228,7 @@ def _gated_period(spec, *, noise_level, frame_rate):
     if found is None:
         return None
     repeat_seen = 2 * found.peak_lag < int(REPEAT_SHARE * len(r))  # the 2T test was made (and passed)
-    needed = max(MIN_PERIODICITY if repeat_seen else MIN_SINGLE_PERIODICITY,
-                 PAIR_SIGMAS / np.sqrt(pairs[found.peak_lag]))
+    overlap = r[1:min(len(r), int(round(spec.window_s / spec.hop_s)))]  # frames sharing chirps correlate
+    error = np.sqrt((1 + 2 * np.sum(overlap ** 2)) / pairs[found.peak_lag])  # Bartlett's, over those lags
+    needed = max(MIN_PERIODICITY if repeat_seen else MIN_SINGLE_PERIODICITY, PAIR_SIGMAS * error)
     return found if found.strength >= needed else None
