@@ -108,9 +108,9 @@ def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate):
     (the wingbeat's phase does not carry from one burst to the next). Returns ``(r, pairs)``: ``r``
     normalised to 1 at lag 0 (0 where the bursts hold no variation), over the lags resting on
     ``FLAP_SMOOTH_S`` of pairs at least, and ``pairs`` their number. A period is searched up to half those
-    lags (for one burst: two periods and a quarter second must fit in it). None where the rows show no glide (frames
-    not flapping in under ``MIN_GLIDE_SHARE`` of the dwell), flap for under ``FLAP_SMOOTH_S``, or fewer than
-    ``MIN_WING_ROWS`` rows are lit.
+    lags (for one burst: two periods and a quarter second must fit in it). None where the rows show no
+    glide (frames not flapping in under ``MIN_GLIDE_SHARE`` of the dwell), flap for under ``FLAP_SMOOTH_S``,
+    or fewer than ``MIN_WING_ROWS`` rows are lit.
     """
     rows = _lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1])
     if len(rows) < MIN_WING_ROWS:
