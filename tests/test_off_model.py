@@ -28,6 +28,12 @@ def analyse(tmp_path, radar, target, **params):
     return process_capture(path, ProcessParams(**params)).rows[0], truth["targets"][0]
 
 
+def sweep_row(tmp_path, radar, target, *, moving_snr_db, seed, **params):
+    """The first row of ``target`` simulated alone as a scene of the evaluation sweep (its SNR and seed)."""
+    path, _ = simulate(tmp_path, scene_mapping(radar, [target], noise={"moving_snr_db": moving_snr_db}, seed=seed))
+    return process_capture(path, ProcessParams(**params)).rows[0]
+
+
 def test_rotors_at_unequal_rates_each_resolved(tmp_path):
     """Four rotors 1-4 % apart: each comb's K-th line is K x 0.8-3.2 Hz from its neighbour's, resolved
     from K >= 3 at 2 Hz; each rate within a tenth of a bin (0.1 Hz / 2 = 0.05 rev/s), their median reported."""
@@ -193,8 +199,7 @@ def test_rotors_a_few_per_cent_apart_seen_briefly(tmp_path):
                        "rate_wander_fraction": 0.00901216, "rate_wander_period_s": 0.665177,
                        "tilt_deg": [-1.98771, 1.22871, -4.2218, -1.46564], "blades": 2, "arm_m": 0.274637,
                        "blade_length_m": 0.141111, "rev_per_s": rates}}
-    path, _ = simulate(tmp_path, scene_mapping(radar, [quad], noise={"moving_snr_db": 28.1623}, seed=928269996))
-    row = process_capture(path, ProcessParams(n_blades=2, elevation_deg=44.672)).rows[0]
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=28.1623, seed=928269996, n_blades=2, elevation_deg=44.672)
     assert row["class"] == "drone" and row["rotation_rate_hz_status"] == "ok"
     assert row["rotation_rate_hz"] == pytest.approx(np.mean(np.abs(rates)), rel=0.02)
 
@@ -277,8 +282,7 @@ def test_power_repeating_at_an_offset_between_rotors_gives_no_rate(tmp_path):
                        "rate_wander_fraction": 0.00994286, "rate_wander_period_s": 2.5029,
                        "tilt_deg": [-3.39448, -4.29234, -4.12989, -2.26073], "blades": 2, "arm_m": 0.250789,
                        "blade_length_m": 0.0983777, "rev_per_s": [78.774, -80.2409, 80.8529, -80.0918]}}
-    path, _ = simulate(tmp_path, scene_mapping(radar, [quad], noise={"moving_snr_db": 0.257463}, seed=1502228278))
-    row = process_capture(path, ProcessParams(n_blades=2)).rows[0]
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=0.257463, seed=1502228278, n_blades=2)
     assert row["class"] == "drone"
     assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"
     assert row["rotation_rate_hz"] is None
@@ -325,8 +329,7 @@ def test_wingbeat_of_a_bird_gliding_between_flapping_bursts(tmp_path):
               "wing_roughness": 0.0559444, "wingbeat_hz": 5.34426, "upper_arm_m": 0.144968,
               "forearm_m": 0.157785, "body_rcs_m2": 0.0174294, "wing_rcs_m2": 0.0097006,
               "motion": {"position_m": [49.8736, -7.00584, 10.2082], "velocity_mps": [-9.7298, 3.00406, 0.0]}}
-    path, _ = simulate(tmp_path, scene_mapping(radar, [pigeon], noise={"moving_snr_db": 11.2139}, seed=1469921155))
-    row = process_capture(path, ProcessParams()).rows[0]
+    row = sweep_row(tmp_path, radar, pigeon, moving_snr_db=11.2139, seed=1469921155)
     assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
     assert row["wingbeat_freq_hz"] == pytest.approx(5.34426, rel=0.01)
 
@@ -344,8 +347,7 @@ def test_a_flap_glide_cycle_is_not_the_wingbeat(tmp_path):
             "wing_roughness": 0.18, "wingbeat_hz": 3.96801, "upper_arm_m": 0.168708, "forearm_m": 0.173179,
             "body_rcs_m2": 0.00909997, "wing_rcs_m2": 0.0011676,
             "motion": {"position_m": [68.8037, 15.575, 16.3072], "velocity_mps": [-4.6787, -7.56866, 0.0]}}
-    path, _ = simulate(tmp_path, scene_mapping(radar, [crow], noise={"moving_snr_db": 5.26369}, seed=2090479518))
-    row = process_capture(path, ProcessParams()).rows[0]
+    row = sweep_row(tmp_path, radar, crow, moving_snr_db=5.26369, seed=2090479518)
     assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
     assert row["wingbeat_freq_hz"] == pytest.approx(3.96801, rel=0.01)
 
@@ -377,8 +379,7 @@ def test_chopping_not_read_at_a_multiple_of_the_comb(tmp_path):
                        "phase_deg": [294.179, 76.9634, 50.6549, 36.6243], "blade_rcs_m2": 0.000330015,
                        "tilt_deg": [3.31846, 0.856374, 4.93853, 3.32479], "blades": 2, "arm_m": 0.12265,
                        "blade_length_m": 0.10875, "rev_per_s": rates}}
-    path, _ = simulate(tmp_path, scene_mapping(radar, [quad], noise={"moving_snr_db": 6.85695}, seed=1570767999))
-    row = process_capture(path, ProcessParams(elevation_deg=45.7593)).rows[0]
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=6.85695, seed=1570767999, elevation_deg=45.7593)
     assert row["class"] == "drone" and row["chopping_freq_hz_status"] == "ok"
     assert row["chopping_freq_hz"] == pytest.approx(2 * np.mean(np.abs(rates)), rel=0.005)
 
@@ -411,8 +412,7 @@ def test_blade_length_of_tips_folded_about_the_span_is_withheld(tmp_path):
                        "rate_wander_fraction": 0.00637747, "rate_wander_period_s": 2.28165,
                        "tilt_deg": [-4.90551, -0.711666, 3.60866, -4.52765], "blades": 2, "arm_m": 0.175279,
                        "blade_length_m": 0.115521, "rev_per_s": [132.745, -121.898, 130.21, -133.06]}}
-    path, _ = simulate(tmp_path, scene_mapping(radar, [quad], noise={"moving_snr_db": -6.13108}, seed=204036403))
-    row = process_capture(path, ProcessParams(n_blades=2, elevation_deg=1.16718)).rows[0]
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=-6.13108, seed=204036403, n_blades=2, elevation_deg=1.16718)
     assert row["rotation_rate_hz_status"] == "ok" and not row["aliased"]
     assert row["blade_length_m"] is None and row["blade_length_m_status"] == "edges_inside_band"
 
@@ -429,8 +429,7 @@ def test_a_heron_flying_along_the_line_of_sight_is_a_bird(tmp_path):
              "upper_arm_m": 0.438128, "forearm_m": 0.43015,
              "body_rcs_m2": 0.0190927, "wing_rcs_m2": 0.010577,
              "motion": {"position_m": [45.9832, -1.25964, 12.6633], "velocity_mps": [8.17597, 0.469366, 0.0]}}
-    path, _ = simulate(tmp_path, scene_mapping(radar, [heron], noise={"moving_snr_db": -8.99213}, seed=1300344300))
-    row = process_capture(path, ProcessParams()).rows[0]
+    row = sweep_row(tmp_path, radar, heron, moving_snr_db=-8.99213, seed=1300344300)
     assert row["micro_doppler_halfwidth_mps"] < 1.0 and abs(row["body_velocity_mps"]) > 2.0
     assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
     assert row["wingbeat_freq_hz"] == pytest.approx(2.4101, rel=0.01)
@@ -472,8 +471,7 @@ def test_wingbeat_within_short_flapping_bursts(tmp_path, radar, goose, snr_db, s
     Read over the flapping frames only, each burst less its own mean, both wingbeats come within 1 %. The
     94 GHz goose's wingbeat drifts 4.6 %: its repeat at 3T falls short, and with the 3T test of the other looks
     its wingbeat was withheld: the gated look tests the repeat at 2T only."""
-    path, _ = simulate(tmp_path, scene_mapping(radar, [goose], noise={"moving_snr_db": snr_db}, seed=seed))
-    row = process_capture(path, ProcessParams()).rows[0]
+    row = sweep_row(tmp_path, radar, goose, moving_snr_db=snr_db, seed=seed)
     assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
     assert row["wingbeat_freq_hz"] == pytest.approx(goose["wingbeat_hz"], rel=0.01)
 
@@ -484,9 +482,7 @@ def test_flapping_bursts_under_two_beats_give_no_wingbeat(tmp_path):
     merge. Within a burst two of its periods do not fit; the lag that does, near half the period (4.65 Hz),
     stands 0.25, under the 0.4 a period needs whose repeat the bursts cannot hold: no wingbeat, no bird."""
     goose = GOOSE_K | {"flap_glide": {"flap_s": 0.6, "glide_s": 0.6}}
-    path, _ = simulate(tmp_path, scene_mapping(K_BAND_GOOSE, [goose], noise={"moving_snr_db": 1.86365},
-                                               seed=261185322))
-    row = process_capture(path, ProcessParams()).rows[0]
+    row = sweep_row(tmp_path, K_BAND_GOOSE, goose, moving_snr_db=1.86365, seed=261185322)
     assert row["wingbeat_freq_hz"] is None and row["wingbeat_freq_hz_status"] == "no_wingbeat"
     assert row["class"] == "none"
 
@@ -503,7 +499,6 @@ def test_a_fast_wingbeat_within_one_frame_is_read_again_sharper(tmp_path):
                "wing_roughness": 0.0709648, "wingbeat_hz": 14.6148, "upper_arm_m": 0.0554441,
                "forearm_m": 0.0564601, "body_rcs_m2": 0.000782688, "wing_rcs_m2": 0.000670053,
                "motion": {"position_m": [27.3903, -4.39612, 22.5393], "velocity_mps": [5.9441, -6.85408, 0.0]}}
-    path, _ = simulate(tmp_path, scene_mapping(radar, [sparrow], noise={"moving_snr_db": 2.61041}, seed=1350296078))
-    row = process_capture(path, ProcessParams()).rows[0]
+    row = sweep_row(tmp_path, radar, sparrow, moving_snr_db=2.61041, seed=1350296078)
     assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
     assert row["wingbeat_freq_hz"] == pytest.approx(14.6148, rel=0.03)

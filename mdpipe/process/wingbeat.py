@@ -54,11 +54,21 @@ BLURRED_FRAMES = 4            # a period under this many frames is read again in
 BLUR_AGREEMENT = 0.15         # ... where it, or half of it, is found within this share (else withheld)
 
 
+def _lit_level(noise_level):
+    """The power of a lit cell: ``SIGNAL_ROW_DB`` above ``noise_level`` (per bin)."""
+    return noise_level * 10 ** (SIGNAL_ROW_DB / 10)
+
+
+def _frames_per_window(spec):
+    """How many hops a spectrogram frame spans: frames this many apart or fewer share chirps."""
+    return int(round(spec.window_s / spec.hop_s))
+
+
 def _lit_rows(spec, noise_level, row_percentile):
-    """The Doppler rows within ``MAX_MICRO_DOPPLER_HZ`` whose power stands ``SIGNAL_ROW_DB`` above
-    ``noise_level`` (per bin) in ``100 - row_percentile`` % of the frames."""
+    """The Doppler rows within ``MAX_MICRO_DOPPLER_HZ`` lit (:func:`_lit_level`) in ``100 - row_percentile`` %
+    of the frames."""
     power = spec.power[np.abs(spec.f_hz) <= MAX_MICRO_DOPPLER_HZ]
-    return power[np.percentile(power, row_percentile, axis=1) > noise_level * 10 ** (SIGNAL_ROW_DB / 10)]
+    return power[np.percentile(power, row_percentile, axis=1) > _lit_level(noise_level)]
 
 
 def _lag_products(rows):
@@ -87,7 +97,7 @@ def flapping_frames(rows, *, noise_level, frame_rate):
     """Frames in which a bird flaps: where the share of ``rows`` (its wing rows) lit ``SIGNAL_ROW_DB`` above
     ``noise_level``, averaged over ``FLAP_SMOOTH_S`` (an odd number of frames, centred), reaches ``FLAP_SHARE``
     of its 95th percentile (the strokes light the rows unevenly within a beat; a glide leaves them dark)."""
-    lit = (rows > noise_level * 10 ** (SIGNAL_ROW_DB / 10)).mean(axis=0)
+    lit = (rows > _lit_level(noise_level)).mean(axis=0)
     smooth = moving_average(lit, 2 * int(round(FLAP_SMOOTH_S * frame_rate / 2)) + 1)
     return smooth >= FLAP_SHARE * np.percentile(smooth, 95)
 
@@ -120,7 +130,7 @@ def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate):
         return None
     rows = np.log(rows + np.finfo(float).tiny)
     n = rows.shape[1]
-    straddling = int(round(spec.window_s / spec.hop_s)) // 2  # frames a switch falls in, each side of it
+    straddling = _frames_per_window(spec) // 2  # frames a switch falls in, each side of it
     products, pairs = np.zeros(n), np.zeros(n)
     for start, stop in bursts(flapping):
         start, stop = start + straddling, stop - straddling
@@ -228,7 +238,7 @@ def _gated_period(spec, *, noise_level, frame_rate):
     if found is None:
         return None
     repeat_seen = 2 * found.peak_lag < int(REPEAT_SHARE * len(r))  # the 2T test was made (and passed)
-    overlap = r[1:min(len(r), int(round(spec.window_s / spec.hop_s)))]  # frames sharing chirps correlate
+    overlap = r[1:min(len(r), _frames_per_window(spec))]  # frames sharing chirps correlate
     error = np.sqrt((1 + 2 * np.sum(overlap ** 2)) / pairs[found.peak_lag])  # Bartlett's, over those lags
     needed = max(MIN_PERIODICITY if repeat_seen else MIN_SINGLE_PERIODICITY, PAIR_SIGMAS * error)
     return found if found.strength >= needed else None
