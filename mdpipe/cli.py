@@ -510,7 +510,7 @@ def _gather(folder, *, figures):
     if figures and rows:
         from mdpipe.report import plots
 
-        plots.summary_figure(tables.frame(columns, rows), folder / "summary.png")
+        plots.summary_figure(rows, folder / "summary.png")
     counts = Counter(row["class"] for row in rows)
     click.echo(f"{folder / tables.SUMMARY_TABLE}: {len(rows)} target rows from "
                f"{len({row['file'] for row in rows})} captures "
@@ -560,7 +560,7 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
     try:
         _run(jobs, on_outcome=tally, debug=debug, progress=progress, workers=workers, scheduler=scheduler,
              track=True, finish=summary,
-             started=lambda: None if no_figures else _import_in_background(["mdpipe.report.plots", "pandas"]))
+             started=lambda: None if no_figures else _import_in_background(["mdpipe.report.plots"]))
     except (KeyboardInterrupt, Terminated) as exc:
         click.echo(f"Interrupted after {sum(counts.values())} of {len(jobs)} captures; each capture is published "
                    "whole or not at all: run the same command again to finish.", err=True)

@@ -106,6 +106,29 @@ def test_summary_table_keeps_types(tmp_path):
     assert errors == []
 
 
+
+SUMMARY_RUN = """
+import sys
+from mdpipe.cli import main
+main(["summarize", sys.argv[1]], standalone_mode=False)
+print("pandas" in sys.modules)
+"""
+
+
+def test_folder_summary_loads_no_pandas(tmp_path):
+    """The folder's table and figure are drawn from the gathered text rows: pandas' import (0.1-0.3 s) is not
+    paid at the end of every batch."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "out"
+    assert batch(SAMPLES / "phantom4_xband.h5", SAMPLES / "clutter_only.h5", "--out", out, "-j", 1,
+                 "--no-figures").exit_code == 0
+    (out / "features.csv").unlink()
+    done = subprocess.run([sys.executable, "-c", SUMMARY_RUN, str(out)], capture_output=True, text=True, check=True)
+    assert done.stdout.splitlines()[-1] == "False"
+    assert (out / "summary.png").stat().st_size > 0 and len((out / "features.csv").read_text().splitlines()) == 3
+
 def _mtimes(out):
     return {key: (out / key / f"{Path(key).name}.features.csv").stat().st_mtime_ns for key in manifest.load(out)}
 

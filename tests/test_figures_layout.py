@@ -10,7 +10,6 @@ from pathlib import Path
 
 import matplotlib
 import numpy as np
-import pandas as pd
 import pytest
 
 from conftest import XBAND, scene_mapping, simulate
@@ -139,7 +138,7 @@ def test_summary_figure_fits_the_canvas(results, monkeypatch):
     rows = [row for result in results.values() for row in result.rows]
     figures = []
     monkeypatch.setattr(plots, "_save", lambda fig, path, description: figures.append(fig))
-    plots.summary_figure(pd.DataFrame(rows), "unused.png")
+    plots.summary_figure(rows, "unused.png")
     strip, main = figures[0].axes[:2]
     placed = np.concatenate([c.get_offsets() for c in main.collections
                              if isinstance(c, matplotlib.collections.PathCollection)])

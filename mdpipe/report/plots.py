@@ -343,24 +343,35 @@ def _label(row):
     return f"{_name(row['file']).removesuffix('.h5')} #{int(row['target'])}{aliased}"
 
 
-def summary_figure(features, path):
+def _numbers(rows, key):
+    """``row[key]`` of every row as floats, NaN where empty or null (the text cells of a gathered table, or
+    numbers)."""
+    return np.array([np.nan if row.get(key) in (None, "") else float(row[key]) for row in rows], dtype=float)
+
+
+def summary_figure(rows, path):
     """Every target of a folder: micro-Doppler half-width (m/s) against its periodicity (Hz), with the class regions.
 
-    The regions are those of :mod:`mdpipe.process.classify`: drone above ``DRONE_SPREAD_MPS`` or with
-    a blade line comb (chopping frequencies searched from ``combs.MIN_CHOP_HZ`` to ``combs.MAX_CHOP_HZ``,
-    whatever the blade count); bird with a wingbeat (searched from
-    ``MIN_WINGBEAT_HZ`` to ``MAX_WINGBEAT_HZ``) below it. Rows without a periodicity sit in a strip
+    ``rows``: dicts holding ``file``, ``target``, ``class``, ``aliased``, ``chopping_freq_hz``,
+    ``wingbeat_freq_hz`` and ``micro_doppler_halfwidth_mps``, as numbers or as the text of the tables
+    (:func:`mdpipe.report.tables.gather`). The regions are those of :mod:`mdpipe.process.classify`: drone
+    above ``DRONE_SPREAD_MPS`` or with a blade line comb (chopping frequencies searched from
+    ``combs.MIN_CHOP_HZ`` to ``combs.MAX_CHOP_HZ``, whatever the blade count); bird with a wingbeat (searched
+    from ``MIN_WINGBEAT_HZ`` to ``MAX_WINGBEAT_HZ``) below it. Rows without a periodicity sit in a strip
     of their own at their half-width; rows without a target are listed by file.
     """
     fig = _figure(figsize=(11, 6))
     strip = fig.add_subplot()
     ax = fig.add_axes((0, 0, 1, 1), sharey=strip)
     key = _key_axes(fig)
-    rate = features["chopping_freq_hz"].fillna(features["wingbeat_freq_hz"])
-    width = features["micro_doppler_halfwidth_mps"]
+    chopping = _numbers(rows, "chopping_freq_hz")
+    rate = np.where(np.isnan(chopping), _numbers(rows, "wingbeat_freq_hz"), chopping)
+    width = _numbers(rows, "micro_doppler_halfwidth_mps")
+    has_rate, has_width = ~np.isnan(rate), ~np.isnan(width)
     chop = (combs.MIN_CHOP_HZ, combs.MAX_CHOP_HZ)
-    x_lim = (min(0.1, rate.min() / 2 if rate.notna().any() else 0.1), max(3000.0, rate.max() * 2 if rate.notna().any() else 0))
-    y_lim = (min(0.05, width.min() / 2 if width.notna().any() else 0.05), max(200.0, width.max() * 2 if width.notna().any() else 0))
+    x_lim = (min(0.1, rate[has_rate].min() / 2) if has_rate.any() else 0.1, max(3000.0, 2 * rate[has_rate].max(initial=0)))
+    y_lim = (min(0.05, width[has_width].min() / 2) if has_width.any() else 0.05,
+             max(200.0, 2 * width[has_width].max(initial=0)))
     ax.axhspan(DRONE_SPREAD_MPS, y_lim[1], color="C0", alpha=0.08, lw=0, label=f"drone: half-width > {DRONE_SPREAD_MPS:g} m/s")
     ax.fill_between(chop, y_lim[0], DRONE_SPREAD_MPS, color="C0", alpha=0.16, lw=0,
                     label=f"drone: blade line comb, chopping {chop[0]:g}-{chop[1]:g} Hz")
@@ -371,19 +382,19 @@ def summary_figure(features, path):
     markers = {"drone": ("^", "C0"), "bird": ("o", "C2"), "none": ("x", "C3")}
     no_target = []
     for label, (marker, colour) in markers.items():
-        chosen = (features["class"] == label).to_numpy()
-        placed = chosen & rate.notna().to_numpy()
-        alone = chosen & rate.isna().to_numpy() & width.notna().to_numpy()
+        chosen = np.array([row["class"] == label for row in rows], dtype=bool)
+        placed = chosen & has_rate
+        alone = chosen & ~has_rate & has_width
         ax.scatter(rate[placed], width[placed], marker=marker, color=colour, zorder=3,
                    label=f"{label} ({int(chosen.sum())})")
         strip.scatter(np.zeros(int(alone.sum())), width[alone], marker=marker, color=colour, zorder=3)
         for i in np.flatnonzero(placed):
-            ax.annotate(_label(features.iloc[i]), (rate.iloc[i], width.iloc[i]), xytext=(4, 3),
+            ax.annotate(_label(rows[i]), (rate[i], width[i]), xytext=(4, 3),
                         textcoords="offset points", fontsize=7)
         for i in np.flatnonzero(alone):
-            strip.annotate(_label(features.iloc[i]), (0, width.iloc[i]), xytext=(0, 5), textcoords="offset points",
+            strip.annotate(_label(rows[i]), (0, width[i]), xytext=(0, 5), textcoords="offset points",
                            fontsize=6.5, ha="center")
-        no_target += [_name(f) for f in features.loc[chosen & width.isna().to_numpy(), "file"]]
+        no_target += [_name(rows[i]["file"]) for i in np.flatnonzero(chosen & ~has_width)]
     ax.set_xscale("log")
     ax.set_yscale("log")
     for axis in (ax.xaxis, ax.yaxis):  # minor ticks and grid at 2 and 5 only: each tick is an artist to draw
@@ -397,7 +408,7 @@ def summary_figure(features, path):
     strip.grid(alpha=0.3, axis="y", which="both")
     ax.tick_params(labelleft=False)
     ax.set_xlabel("periodicity: chopping frequency or wingbeat (Hz)")
-    _title(ax, f"{len(features)} rows from {features['file'].nunique()} captures: class regions of "
+    _title(ax, f"{len(rows)} rows from {len({row['file'] for row in rows})} captures: class regions of "
            "mdpipe.process.classify", fontsize=9)
     ax.grid(alpha=0.3, which="both")
     key.legend(*ax.get_legend_handles_labels(), **LEGEND)
