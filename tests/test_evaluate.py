@@ -96,6 +96,11 @@ def test_blade_length_rules():
     assert scoring.blade_length_estimable(dataclasses.replace(DRONE, elevation_given=False)) \
         == (False, "elevation_unknown")
     assert scoring.blade_length_estimable(dataclasses.replace(DRONE, tip_doppler_hz=900.0)) == (False, "few_harmonics")
+    # each disc at the drone's beta plus its tilt; given beta only, r is known to |cos(beta + tau) / cos(beta) - 1|
+    tilted = dataclasses.replace(DRONE, rotor_elevations_deg=(14.0, 6.0, 13.0, 7.0))  # tau <= 4 deg at 10 deg: 1.3 %
+    assert scoring.blade_length_estimable(tilted) == (True, "")
+    steep = dataclasses.replace(tilted, elevation_deg=40.0, rotor_elevations_deg=(44.0, 36.0, 43.0, 37.0))  # 6.1 %
+    assert scoring.blade_length_estimable(steep) == (False, "tilt")
 
 
 def test_body_velocity_rules():

@@ -401,7 +401,9 @@ def test_blade_length_of_tips_folded_about_the_span_is_withheld(tmp_path):
     """Four rotors of 16-point blades at 122-133 rev/s, K band (a scene of the default sweep, its clutter left
     out): the tips reach 2 x 2 pi 133 rev/s x 0.1155 m / 12.4 mm = 15.5 kHz, twice the span's +-8.35 kHz, yet the
     band does not fill the span (sixteen points fold to lines with gaps). Flash frames then show edges at
-    +-4.8 kHz (r = 3.6 cm, status ok) while the whole dwell's micro-Doppler reaches 6.1 kHz: not the tips'."""
+    +-4.8 kHz (r = 3.6 cm, status ok) while the whole dwell's micro-Doppler reaches 6.1 kHz: not the tips'. Read
+    on the flashes' tip sides only, the edges lie at +-4.9 kHz (the dwell's band 1.246 times beyond them, inside the
+    1.25 of edges_inside_band) and scatter from flash to flash with a standard error of 2.4 %: withheld for that."""
     radar = dict(f_start_hz=24.0e9, f_stop_hz=24.25e9, ramp_up_s=47.8987e-6, chirp_period_s=59.8734e-6,
                  sample_rate_hz=2672306.3491911055, n_samples=128, n_chirps=6327, n_channels=2)
     quad = {"name": "quad", "type": "multirotor", "elevation_deg": 1.16718, "body_rcs_m2": 0.00106282,
@@ -414,7 +416,7 @@ def test_blade_length_of_tips_folded_about_the_span_is_withheld(tmp_path):
                        "blade_length_m": 0.115521, "rev_per_s": [132.745, -121.898, 130.21, -133.06]}}
     row = sweep_row(tmp_path, radar, quad, moving_snr_db=-6.13108, seed=204036403, n_blades=2, elevation_deg=1.16718)
     assert row["rotation_rate_hz_status"] == "ok" and not row["aliased"]
-    assert row["blade_length_m"] is None and row["blade_length_m_status"] == "edges_inside_band"
+    assert row["blade_length_m"] is None and row["blade_length_m_status"] == "edges_scatter"
 
 
 def test_a_heron_flying_along_the_line_of_sight_is_a_bird(tmp_path):
@@ -502,3 +504,24 @@ def test_a_fast_wingbeat_within_one_frame_is_read_again_sharper(tmp_path):
     row = sweep_row(tmp_path, radar, sparrow, moving_snr_db=2.61041, seed=1350296078)
     assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
     assert row["wingbeat_freq_hz"] == pytest.approx(14.6148, rel=0.03)
+
+
+def test_three_blade_flashes_read_on_their_tip_side(tmp_path):
+    """Four 3-blade rotors of 16-point blades (one blade brighter) at 51-52 rev/s, K band, beta 21.5 deg (a scene
+    of the default sweep). An odd-N blade flashes alone: each flash reaches the tip Doppler on one side, and its
+    other side's edge lies at 0.4-0.7 of it. Counting both sides of every flash read r 7.8 % short (12.2 cm for
+    13.3); counting each flash's tip side only, within 3 %. At 21.5 deg a 5 deg tilt of a disc moves cos(beta) by
+    3.4 %: the value is given with its status tilt_sensitive, not ok."""
+    radar = dict(f_start_hz=24.0e9, f_stop_hz=24.25e9, ramp_up_s=33.4732e-6, chirp_period_s=41.8415e-6,
+                 sample_rate_hz=1911977.344980462, n_samples=64, n_chirps=18148, n_channels=4)
+    quad = {"name": "three_blade_quad", "type": "multirotor", "elevation_deg": 21.5482, "body_rcs_m2": 0.0542473,
+            "motion": {"position_m": [8.53024, -0.336333, 9.49949], "velocity_mps": [3.37244, 7.554, 0.0]},
+            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 16, "root_m": 0.01,
+                       "phase_deg": [162.39, 208.831, 302.508, 223.564], "blade_rcs_m2": 0.00686314,
+                       "tilt_deg": [-0.67593, 2.47207, 3.34042, -3.56685], "blades": 3, "arm_m": 0.311664,
+                       "blade_length_m": 0.132771, "rev_per_s": [51.7862, -51.9709, 51.761, -51.1385],
+                       "blade_gains": [1.0, 1.0, 1.46959]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=17.8169, seed=2112774565, elevation_deg=21.5482)
+    assert row["n_blades"] == 3 and row["rotation_rate_hz_status"] == "ok"
+    assert row["blade_length_m"] == pytest.approx(0.132771, rel=0.03)
+    assert row["blade_length_m_status"] == "tilt_sensitive"

@@ -30,6 +30,7 @@ LINE_SNR_DB = 13.0           # a spectral line is detectable: Pfa 1e-5 per bin n
 MIN_ROTATIONS = 3            # rotation: the dwell holds 3 turns of the slowest rotor
 MIN_CHOP_ORDERS = 3          # rotation: the tips' band spans 3 chopping harmonics a side (a comb's least; face-on: 0)
 MAX_BLADE_ELEVATION_DEG = 80.0
+BLADE_TILT_TOLERANCE = 0.03  # blade length: the rotors' tilts move cos(beta) by at most this share
 MIN_TIP_HARMONICS = 24       # blade length: the band +-f_tip spans 24 rotation harmonics
 MIN_WINGBEATS = 2            # wingbeat: two beats in a row while flapping
 STATIC_SHARE = 1e-3          # body velocity: a body whose echo the dwell's mean removal keeps less of is at rest
@@ -57,6 +58,7 @@ class Physics:
     micro_line_snr_db: float = float("-inf")
     body_line_snr_db: float = float("-inf")
     rotor_rates_hz: tuple = ()
+    rotor_elevations_deg: tuple = ()
     n_blades: int = 0
     blade_length_m: float = float("nan")
     elevation_deg: float = 0.0
@@ -132,8 +134,9 @@ def blade_length_estimable(p):
 
     All of: rotation estimable; the tips' band (body Doppler plus ``f_tip``) inside +-PRF/2 (not
     aliased); ``|beta| <= MAX_BLADE_ELEVATION_DEG``; the band ``2 f_tip`` spans ``MIN_TIP_HARMONICS``
-    rotation harmonics (else its edge is a handful of lines); beta given to the processing, or so
-    given to the processing (Eq. 6 gives ``r cos beta``, not r: without beta, r is an assumption).
+    rotation harmonics (else its edge is a handful of lines); beta given to the processing (Eq. 6 gives
+    ``r cos beta``, not r: without beta, r is an assumption); and the rotors' tilts move ``cos beta`` by at
+    most ``BLADE_TILT_TOLERANCE`` (the processing is given the drone's beta, not each disc's).
     """
     ok, reason = rotation_estimable(p)
     if not ok:
@@ -146,6 +149,9 @@ def blade_length_estimable(p):
         return False, "few_harmonics"
     if not p.elevation_given:
         return False, "elevation_unknown"
+    tilts_deg = np.array(p.rotor_elevations_deg or (p.elevation_deg,)) - p.elevation_deg
+    if rotor.tilt_error(p.elevation_deg, tilts_deg) > BLADE_TILT_TOLERANCE:
+        return False, "tilt"
     return True, ""
 
 
@@ -362,6 +368,7 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
         distinct = len(np.unique(np.round(np.array(rates) * dwell_s)))  # rotors resolved in the dwell spectrum
         lines = distinct * line_count(2 * tip_hz + sweep_hz, rotors.blades * np.mean(rates), prf_hz=prf_hz)
         return Physics(**base, micro_line_snr_db=_db(micro / noise_v2 * gain / lines), rotor_rates_hz=rates,
+                       rotor_elevations_deg=tuple(expected["rotor_elevations_deg"]),
                        n_blades=rotors.blades, blade_length_m=rotors.blade_length_m,
                        elevation_deg=target.elevation_deg, blades_given=process.get("n_blades") is not None,
                        elevation_given="elevation_deg" in process,

@@ -31,6 +31,10 @@ FLASHES_PER_WINDOW = 1.5     # flash main lobes the edge window must hold: Gamma
 MIN_ROTOR_PERIODICITY = 0.6  # a rotor's echo repeats almost exactly (measured 0.93-0.95; a gull's best: 0.40)
 HIGHPASS_SHARE = 0.25        # body removal for unaliased echoes: cut below this share of the band's half-width
 EDGE_NOTCH_SHARE = 0.05      # body removal before the flash edges (which lie at the band's ends)
+MIN_EDGE_FRAMES = 5          # flash edges read on each side, at least (their scatter is measured from them) ...
+EDGE_SPREAD_SHARE = 0.015    # ... and the standard error of their medians' distance at most this share of it
+ROTOR_TILT_DEG = 5.0         # a rotor disc may tilt this far from the drone's elevation (attitude, hover to cruise)
+TILT_TOLERANCE = 0.03        # blade length ok only where that tilt moves cos(beta) by at most this share
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
 TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
@@ -608,6 +612,11 @@ def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_
                 f"{half_width_hz / (bandwidth / 2):.2f} times the flash edges' +-{bandwidth / 2:.4g} Hz: they are "
                 "not the tips' (tips folded about the span's ends, or lost)")
         return withheld("edges_inside_band", note), withheld("edges_inside_band", note), None
+    if edges.n_edges < MIN_EDGE_FRAMES or not edges.spread_hz <= EDGE_SPREAD_SHARE * bandwidth:
+        note = (f"blade length not estimable: the flash edges scatter from flash to flash (+-{bandwidth / 2:.4g} Hz, "
+                f"standard error {edges.spread_hz / bandwidth:.1%} from {edges.n_edges} flashes a side; at most "
+                f"{EDGE_SPREAD_SHARE:.1%} from {MIN_EDGE_FRAMES} or more): the flashes are near the noise")
+        return withheld("edges_scatter", note), withheld("edges_scatter", note), None
     tip = Measured(float(bandwidth))
     gamma = bandwidth / 2 / rate.value
     min_gamma = FLASHES_PER_WINDOW * 2 * n_blades / params.edge_window_periods
@@ -622,8 +631,13 @@ def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_
         value = float(rotor.blade_length_from_bandwidth_m(bandwidth, rotation_rate_hz=rate.value,
                                                            wavelength_m=wavelength_m,
                                                            elevation_deg=params.elevation_deg or 0.0))
+        tilt = rotor.tilt_error(params.elevation_deg or 0.0, (-ROTOR_TILT_DEG, ROTOR_TILT_DEG))
         if rate.status != OK:
             length = Measured(value, rate.status, rate.note.replace("rotation rate", "blade length"))
+        elif params.elevation_deg is not None and tilt > TILT_TOLERANCE:
+            length = Measured(value, "tilt_sensitive", f"blade length to +-{tilt:.0%} only: at beta = "
+                              f"{params.elevation_deg:g} deg a rotor disc tilted {ROTOR_TILT_DEG:g} deg by the drone's "
+                              "attitude moves cos(beta) that much")
         elif params.elevation_deg is None:
             length = Measured(value, "assumed_elevation", "blade length assumes the rotor plane faces the radar edge-on "
                               "(beta = 0; the echo gives r cos(beta): give --elevation-deg)")

@@ -19,6 +19,7 @@ FLASH_PERCENTILE = 80
 EDGE_PLATEAU_DB = 15.0    # a flash whose edges are read stands this far above the noise (at 10 dB: +4 % spread)
 EDGE_TIP_DB = 6.0         # ... its spectrum's trend at an edge this far, to read the edge against the trend
 TREND_SHARES = (0.3, 0.8)  # a flash's plateau trend is fitted this far out from 0 Hz towards its edge
+ONE_SIDED_SHARE = 0.8     # a flash edge this share of the frame's other edge (from 0 Hz) or more is a tip's
 
 
 @dataclass(frozen=True)
@@ -110,6 +111,16 @@ def _tip_edge(column, f_hz, index, step, *, plateau, noise_level):
     return edge_hz
 
 
+def _median_error(values):
+    """Standard error of the median of ``values``: 1.2533 sigma / sqrt(n), sigma from the median absolute
+    deviation (Gaussian scatter); NaN for fewer than 3 values."""
+    values = np.asarray(values, dtype=float)
+    if len(values) < 3:
+        return np.nan
+    sigma = 1.4826 * np.median(np.abs(values - np.median(values)))
+    return 1.2533 * sigma / np.sqrt(len(values))
+
+
 def _crossing(column, f_hz, index, step, level):
     a, b = column[index], column[index + step]
     t = (np.log(a) - np.log(level)) / (np.log(a) - np.log(b)) if a > b > 0 else 0.0
@@ -118,12 +129,15 @@ def _crossing(column, f_hz, index, step, level):
 
 @dataclass(frozen=True)
 class FlashEdges:
-    """Median Doppler edges of the blade flashes (None when no frame has both), frames used, frames filled."""
+    """Median Doppler edges of the blade flashes (None when no frame has both), frames used, frames filled; the
+    standard error of the edges' distance and the number of edges counted on the side with fewer."""
 
     low_hz: float
     high_hz: float
     n_frames: int
     n_filled: int
+    spread_hz: float = np.nan  # standard error of high_hz - low_hz, from the frames' scatter about their medians
+    n_edges: int = 0           # edges read on the side with fewer
 
     @property
     def fills_span(self):
@@ -142,6 +156,10 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop
     the edges are where the spectrum falls to half amplitude (-6.02 dB) of the frame's plateau
     (median over its occupied part): for any symmetric window kernel the rectangle's edge lies
     there. A frame whose plateau reaches both ends of the span has no edges: its tips alias.
+    A blade alone flashes on one side: an odd-N rotor's blade has no opposite one, so each of its flashes
+    reaches the tip Doppler on one side only (from the root's on that side), and its other side's edge is
+    no tip's (0.4-0.7 of it, seen on 3-blade rotors). A side's edge counts only when it reaches
+    ``ONE_SIDED_SHARE`` of the frame's other side; each side's median is over the edges that count.
     The noise level (``noise_power`` per chirp of the undifferenced echo) is taken out of each frame;
     frames whose plateau is not ``EDGE_PLATEAU_DB`` above it are not flashes to read edges on and are
     left out (``OCCUPIED_DB`` for a differenced echo, whose frames only tell whether they fill the span).
@@ -179,8 +197,12 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop
         high = _tip_edge(column, f, above[-1], 1, plateau=plateau, noise_level=noise_level)
         if low is None or high is None:
             continue
-        lows.append(low)
-        highs.append(high)
-    if not lows:
+        reach = max(-low, high)
+        if -low >= ONE_SIDED_SHARE * reach:
+            lows.append(low)
+        if high >= ONE_SIDED_SHARE * reach:
+            highs.append(high)
+    if not lows or not highs:
         return FlashEdges(None, None, used, filled)
-    return FlashEdges(float(np.median(lows)), float(np.median(highs)), used, filled)
+    return FlashEdges(float(np.median(lows)), float(np.median(highs)), used, filled,
+                      float(np.hypot(_median_error(lows), _median_error(highs))), min(len(lows), len(highs)))

@@ -28,6 +28,9 @@ STATUS_CODES = {
     "few_harmonics": "the blade tips span too few rotation harmonics for the flash edges to be sharp",
     "no_edges": "no flash frame shows both Doppler edges inside the span",
     "edges_inside_band": "the micro-Doppler reaches well beyond the flash edges: they are not the tips' (folded tips)",
+    "edges_scatter": "the flash edges scatter too much from flash to flash (flashes near the noise): their median is not sharp",
+    "tilt_sensitive": ("at this elevation a rotor disc tilted by the drone's attitude (up to 5 deg) moves cos(beta), and r, "
+                       "by more than 3 %"),
     "no_body_line": "no body line stands out of the micro-Doppler",
     "body_unsteady": "the strongest line jumps between the body and rotor lines: no steady body track",
     "velocity_ambiguous": "the Doppler gives the velocity only modulo lambda PRF / 2 and the range track cannot tell which",
