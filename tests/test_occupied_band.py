@@ -47,4 +47,3 @@ def test_a_dense_band_keeps_its_dense_extent():
     band = occupied_band(spectrum(power), 1.0, smooth_hz=SMOOTH_HZ)
     assert abs(band.dense_low_hz + 500) <= SMOOTH_HZ and abs(band.dense_high_hz - 500) <= SMOOTH_HZ
     assert abs(band.low_hz + 500) <= SMOOTH_HZ and abs(band.high_hz - 500) <= SMOOTH_HZ
-
