@@ -27,6 +27,18 @@ def test_moving_average_along_an_axis(x):
                                ndimage.uniform_filter1d(rows, 9, axis=1, mode="nearest"), atol=1e-12)
 
 
+@pytest.mark.parametrize("size", [2, 3, 8, 25, 600])
+def test_moving_average_inside_averages_only_the_samples_inside(x, size):
+    """``mode="inside"``: zeros beyond the edges, divided by how many samples lie inside the window (a window
+    longer than the signal too)."""
+    inside = ndimage.uniform_filter1d(x, size, mode="constant") / ndimage.uniform_filter1d(
+        np.ones_like(x), size, mode="constant")
+    np.testing.assert_allclose(filters.moving_average(x, size, mode="inside"), inside, atol=1e-12)
+    rows = np.stack([x, 2 * x])
+    np.testing.assert_allclose(filters.moving_average(rows.T, size, mode="inside", axis=0),
+                               np.stack([inside, 2 * inside]).T, atol=1e-12)
+
+
 @pytest.mark.parametrize("size", [1, 3, 5, 11])
 def test_running_min_and_median(x, size):
     np.testing.assert_array_equal(filters.running_min(x, size), ndimage.minimum_filter1d(x, size, mode="nearest"))

@@ -16,6 +16,7 @@ from mdpipe.physics.radar import range_rate_from_doppler_mps
 from mdpipe.process import combs, doppler, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_SPEED_MPS, MIN_FLYING_WING_SPREAD_MPS,
                                      MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
+from mdpipe.process.filters import moving_average
 from mdpipe.process.flashes import flash_period, power_period
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
@@ -26,6 +27,8 @@ BODY_FRAME_S = 0.032
 BODY_STEADY_SHARE = 0.5      # frames whose strongest line lies on the smoothed body track
 MAX_SPEED_MPS = 25.0         # birds and small drones fly slower: a faster alias of the body Doppler is not taken
 BODY_TRACK_FRAMES = 9        # running median of the body track (rotor lines win single frames)
+STATIC_LINE_S = 0.25         # the line at 0 Hz (clutter, and what its removal leaves) followed over this time ...
+STATIC_CLEAR_NULLS = 4.0     # ... where the body line lies this many of its smoothing's first nulls from 0 Hz
 MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
 FLASHES_PER_WINDOW = 1.5     # flash main lobes the edge window must hold: Gamma >= 24 for N = 2 (config 4: 26.7)
 MIN_ROTOR_PERIODICITY = 0.6  # a rotor's echo repeats almost exactly (measured 0.93-0.95; a gull's best: 0.40)
@@ -162,7 +165,44 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     doppler_track = np.interp(np.arange(len(signal)) / prf_hz, spec.t_s, frame_track)
     velocity = float(range_rate_from_doppler_mps(float(np.mean(doppler_track)), wavelength_m=wavelength_m))
     return BodyMotion(doppler_track, dealias_velocity(velocity, span_mps=wavelength_m * prf_hz / 2, track=track),
-                      doppler.demodulate(signal, doppler_track, prf_hz=prf_hz))
+                      doppler.demodulate(signal - static_line(signal, doppler_track, prf_hz=prf_hz), doppler_track,
+                                         prf_hz=prf_hz))
+
+
+def _smoothed(signal, size):
+    """Triangular moving average over ``2 size - 1`` samples (two boxcars), real and imaginary parts, of the
+    samples inside the signal (at its ends, the body's last value repeated would pass for a line)."""
+    def smooth(x):
+        return moving_average(moving_average(x, size, mode="inside"), size, mode="inside")
+    return smooth(signal.real) + 1j * smooth(signal.imag)
+
+
+def static_line(signal, track_hz, *, prf_hz):
+    """The line at 0 Hz that the body-demodulated echo would carry as a copy of the body track, mirrored.
+
+    Static clutter is removed as the mean chirp of each range column, but that mean also holds what the
+    target puts at 0 Hz: a body whose Doppler crosses 0 Hz (a bird flying past) dwells there, and its mean,
+    subtracted from every chirp, leaves a line at 0 Hz as strong as clutter (-40 dB of the body for a pigeon
+    sweeping +-900 Hz in 3 s; it made a 12.4 m/s micro-Doppler of its 5 m/s wings). Clutter the mean does not
+    hold (it changes along a track that crosses range bins) leaves one too. Demodulated by the body, such a
+    line sweeps over the micro-Doppler band. It is followed as the echo smoothed over ``STATIC_LINE_S``
+    (triangular, first null ``2 / STATIC_LINE_S``) where the body line lies ``STATIC_CLEAR_NULLS`` such nulls
+    from 0 Hz or more throughout the smoothing's window (there the smoothing only scales the body, by 1 % at
+    most: it holds the line alone), interpolated
+    across the times the body passes 0 Hz, and 0 where the body never leaves it (a hovering drone's body is
+    that line).
+    """
+    size = max(1, int(round(STATIC_LINE_S * prf_hz / 2)))
+    away = np.abs(doppler.fold_hz(track_hz, prf_hz=prf_hz)) >= STATIC_CLEAR_NULLS * 2.0 / STATIC_LINE_S
+    clear = moving_average(away.astype(float), 2 * size - 1, mode="inside") > 1 - 1e-9  # away over the whole window
+    if not clear.any():
+        return np.zeros_like(signal)
+    line = _smoothed(np.asarray(signal, dtype=np.complex128), size)
+    if clear.all():
+        return line
+    index = np.arange(len(signal))
+    inside = np.interp(index, index[clear], line.real[clear]) + 1j * np.interp(index, index[clear], line.imag[clear])
+    return np.where(clear, line, inside)
 
 
 def highpass(signal, *, prf_hz, cutoff_hz):

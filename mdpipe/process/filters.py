@@ -2,7 +2,9 @@
 0.25 s to import, a tenth of a capture's run).
 
 Edges are handled as scipy.ndimage's ``mode="nearest"`` (the edge value repeated) or ``mode="wrap"``;
-tests check the results against scipy.ndimage.
+tests check the results against scipy.ndimage. ``moving_average`` also takes ``mode="inside"``: the mean
+of the neighbours that lie inside the signal (no value repeated: one edge sample of a strong tone, repeated,
+is no average of anything).
 """
 
 import numpy as np
@@ -18,14 +20,31 @@ def _padded(x, size, mode, axis):
 
 
 def moving_average(x, size, *, mode="nearest", axis=-1):
-    """Mean over ``size`` neighbours centred on each sample (scipy.ndimage.uniform_filter1d)."""
+    """Mean over ``size`` neighbours centred on each sample (scipy.ndimage.uniform_filter1d), or with
+    ``mode="inside"`` over those of them inside ``x``."""
     x = np.asarray(x, dtype=np.float64)
     if size <= 1:
         return x.copy()
+    if mode == "inside":
+        sums = moving_average(_zero_padded(x, size, axis), size, mode="nearest", axis=axis)
+        counts = moving_average(_zero_padded(np.ones(x.shape[axis]), size, 0), size, mode="nearest")
+        inside = [slice(None)] * x.ndim
+        inside[axis] = slice(size, size + x.shape[axis])
+        shape = [1] * x.ndim
+        shape[axis] = x.shape[axis]
+        return sums[tuple(inside)] / counts[size:size + x.shape[axis]].reshape(shape)
     padded = np.moveaxis(_padded(x, size, mode, axis), axis, -1)
     total = np.cumsum(padded, axis=-1)
     total = np.concatenate([np.zeros(total.shape[:-1] + (1,)), total], axis=-1)
     return np.moveaxis((total[..., size:] - total[..., :-size]) / size, -1, axis)
+
+
+def _zero_padded(x, size, axis):
+    """``x`` with ``size`` zeros before and after along ``axis``: a window that reaches past an edge sums nothing
+    there."""
+    widths = [(0, 0)] * np.ndim(x)
+    widths[axis] = (size, size)
+    return np.pad(x, widths)
 
 
 def running_min(x, size):
