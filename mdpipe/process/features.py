@@ -141,7 +141,8 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     does not move it; if fewer than ``BODY_STEADY_SHARE`` of the frames peak on the track, the body
     is not steady enough to demodulate. The velocity is the mean of the track (the mean range rate
     over the dwell; the running median has already put aside frames where a rotor line won),
-    unfolded with the range ``track`` where the Doppler alone is ambiguous (:func:`dealias_velocity`).
+    unfolded with the range ``track`` where the Doppler alone is ambiguous (:func:`dealias_velocity`). The
+    echo is demodulated less its line at 0 Hz (:func:`static_line`).
     """
     frame_s = min(BODY_FRAME_S, len(signal) / prf_hz)
     spec = doppler.spectrogram(signal, prf_hz=prf_hz, window_s=frame_s, hop_s=frame_s / 4)
@@ -182,15 +183,13 @@ def static_line(signal, track_hz, *, prf_hz):
 
     Static clutter is removed as the mean chirp of each range column, but that mean also holds what the
     target puts at 0 Hz: a body whose Doppler crosses 0 Hz (a bird flying past) dwells there, and its mean,
-    subtracted from every chirp, leaves a line at 0 Hz as strong as clutter (-40 dB of the body for a pigeon
-    sweeping +-900 Hz in 3 s; it made a 12.4 m/s micro-Doppler of its 5 m/s wings). Clutter the mean does not
-    hold (it changes along a track that crosses range bins) leaves one too. Demodulated by the body, such a
-    line sweeps over the micro-Doppler band. It is followed as the echo smoothed over ``STATIC_LINE_S``
-    (triangular, first null ``2 / STATIC_LINE_S``) where the body line lies ``STATIC_CLEAR_NULLS`` such nulls
-    from 0 Hz or more throughout the smoothing's window (there the smoothing only scales the body, by 1 % at
-    most: it holds the line alone), interpolated
-    across the times the body passes 0 Hz, and 0 where the body never leaves it (a hovering drone's body is
-    that line).
+    subtracted from every chirp, leaves a line at 0 Hz (-44 dB of a body sweeping +-900 Hz in 3 s: a pigeon's
+    4.6 m/s of wings read 12.4 m/s). Clutter the mean does not hold (it changes along a track that crosses
+    range bins) leaves one too. Demodulated by the body, such a line sweeps over the micro-Doppler band.
+    It is followed as the echo smoothed over ``STATIC_LINE_S`` (triangular, first null ``2 / STATIC_LINE_S``)
+    where the body line lies ``STATIC_CLEAR_NULLS`` such nulls from 0 Hz or more throughout the smoothing's
+    window (there the smoothing leaks under 1 % of the body: it holds the line), interpolated across the
+    times the body passes 0 Hz, and 0 where the body never leaves it (a hovering drone's body is that line).
     """
     size = max(1, int(round(STATIC_LINE_S * prf_hz / 2)))
     away = np.abs(doppler.fold_hz(track_hz, prf_hz=prf_hz)) >= STATIC_CLEAR_NULLS * 2.0 / STATIC_LINE_S
