@@ -15,7 +15,7 @@ def x():
 
 
 @pytest.mark.parametrize("size", [1, 2, 3, 8, 25])
-@pytest.mark.parametrize("mode", ["nearest", "wrap"])
+@pytest.mark.parametrize("mode", ["nearest", "wrap", "constant"])
 def test_moving_average_is_uniform_filter1d(x, size, mode):
     np.testing.assert_allclose(filters.moving_average(x, size, mode=mode),
                                ndimage.uniform_filter1d(x, size, mode=mode), atol=1e-12)

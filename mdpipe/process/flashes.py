@@ -22,8 +22,9 @@ amplitude pattern above repeats too, and a blade differing repeats once a turn).
 from dataclasses import dataclass
 
 import numpy as np
-from mdpipe.process.filters import local_maxima, moving_average
-from mdpipe.process.periodicity import autocorrelation, find_period, lag_range, period_from_autocorrelation
+from mdpipe.process.filters import local_maxima, moving_average, robust_sigma
+from mdpipe.process.periodicity import (autocorrelation, bartlett_error, find_period, lag_range,
+                                         period_from_autocorrelation)
 
 EVENT_SIGMAS = 6.0          # an event stands this many robust sigmas above the median power
 FALSE_EVENTS = 0.1          # noise events expected over a whole capture
@@ -97,9 +98,7 @@ def flash_events(power, *, noise_power):
     ``p ln(n / FALSE_EVENTS)`` in ``FALSE_EVENTS`` samples out of n. Events must clear that and
     ``EVENT_SIGMAS`` robust sigmas above the median of ``power``.
     """
-    median = np.median(power)
-    sigma = 1.4826 * np.median(np.abs(power - median))
-    threshold = max(median + EVENT_SIGMAS * sigma, noise_power * np.log(len(power) / FALSE_EVENTS))
+    threshold = max(np.median(power) + EVENT_SIGMAS * robust_sigma(power), noise_power * np.log(len(power) / FALSE_EVENTS))
     peak = (power > np.roll(power, 1)) & (power >= np.roll(power, -1))
     return peak & (power > threshold)
 
@@ -194,7 +193,7 @@ def power_period(micro_signal, *, prf_hz, min_period_s):
     lag = found.peak_lag
     baseline = r[lag] - found.strength
     lo, hi = lag_range(len(r), sample_rate_hz=prf_hz, min_period_s=min_period_s, max_period_s=MAX_POWER_PERIOD_S)
-    standard_error = np.sqrt((1 + 2 * np.sum(r[1:lo] ** 2)) / (len(r) - lag))
+    standard_error = bartlett_error(r[1:lo], len(r) - lag)
     sigmas = (r[lag] - np.median(r[lo:hi])) / standard_error
     if sigmas < POWER_SIGMAS or baseline > POWER_BASELINE:
         return None

@@ -48,6 +48,13 @@ def autocorrelation(signal, *, signed=False):
     return r / r[0] if r[0] > 0 else r
 
 
+def bartlett_error(correlated, n_products):
+    """Bartlett's standard error of an autocorrelation coefficient resting on ``n_products`` products, for a
+    signal correlated over the lags whose coefficients are ``correlated`` (and not beyond them):
+    ``sqrt((1 + 2 sum r_k^2) / n)``."""
+    return float(np.sqrt((1 + 2 * np.sum(np.square(correlated))) / n_products))
+
+
 def _parabolic_peak(r, index):
     if index <= 0 or index >= len(r) - 1:
         return float(index)

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mdpipe.process.doppler import noise_level_per_bin, spectrogram
-from mdpipe.process.filters import moving_average
+from mdpipe.process.filters import moving_average, robust_sigma
 
 OCCUPIED_DB = 10.0        # micro-Doppler "present" this far above the noise level (smoothed) ...
 LINE_DB = 15.0            # ... or in a single bin this far above it (noise: once in 5e13 bins)
@@ -114,11 +114,9 @@ def _tip_edge(column, f_hz, index, step, *, plateau, noise_level):
 def _median_error(values):
     """Standard error of the median of ``values``: 1.2533 sigma / sqrt(n), sigma from the median absolute
     deviation (Gaussian scatter); NaN for fewer than 3 values."""
-    values = np.asarray(values, dtype=float)
     if len(values) < 3:
         return np.nan
-    sigma = 1.4826 * np.median(np.abs(values - np.median(values)))
-    return 1.2533 * sigma / np.sqrt(len(values))
+    return 1.2533 * robust_sigma(values) / np.sqrt(len(values))
 
 
 def _crossing(column, f_hz, index, step, level):

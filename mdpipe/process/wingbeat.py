@@ -29,7 +29,7 @@ beating 14.6 Hz in 63 ms frames read 7.6 % off, and at 14 Hz at X band as 7 Hz).
 import numpy as np
 from mdpipe.process.doppler import noise_level_per_bin, spectrogram
 from mdpipe.process.filters import moving_average
-from mdpipe.process.periodicity import period_from_autocorrelation
+from mdpipe.process.periodicity import bartlett_error, period_from_autocorrelation
 
 FRAME_S = 0.064
 HOP_S = 0.016
@@ -239,6 +239,6 @@ def _gated_period(spec, *, noise_level, frame_rate):
         return None
     repeat_seen = 2 * found.peak_lag < int(REPEAT_SHARE * len(r))  # the 2T test was made (and passed)
     overlap = r[1:min(len(r), _frames_per_window(spec))]  # frames sharing chirps correlate
-    error = np.sqrt((1 + 2 * np.sum(overlap ** 2)) / pairs[found.peak_lag])  # Bartlett's, over those lags
+    error = bartlett_error(overlap, pairs[found.peak_lag])
     needed = max(MIN_PERIODICITY if repeat_seen else MIN_SINGLE_PERIODICITY, PAIR_SIGMAS * error)
     return found if found.strength >= needed else None
