@@ -50,10 +50,20 @@ def complete_folders(out):
     return found
 
 
+def markers(out):
+    """The markers of the capture folders published in ``out`` by a run still going on: a temporary folder
+    renamed while the scan reaches it makes the scan start again."""
+    while True:
+        try:
+            return list(out.rglob(tables.MARKER))
+        except FileNotFoundError:
+            continue
+
+
 def wait_for_first(out, process, timeout_s=120):
     deadline = time.monotonic() + timeout_s
     while time.monotonic() < deadline:
-        if list(out.rglob(tables.MARKER)):
+        if markers(out):
             return
         assert process.poll() is None, process.communicate()
         time.sleep(0.05)
