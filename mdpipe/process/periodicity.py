@@ -25,12 +25,14 @@ MAX_REPEATS = 64
 class Period:
     """A period found in a signal: ``period_s``, and ``strength`` (peak prominence; within [0, 1] for a
     magnitude autocorrelation, up to 2 for a signed one) of the autocorrelation's peak at lag ``peak_lag``
-    (samples; the period before its refinement)."""
+    (samples; the period before its refinement); ``error_s`` the standard error of ``period_s`` from the scatter
+    of its ``repeats`` peaks about multiples of it (inf under three)."""
 
     period_s: float
     strength: float
     repeats: int
     peak_lag: int = 0
+    error_s: float = np.inf
 
 
 def autocorrelation(signal, *, signed=False):
@@ -121,7 +123,16 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
                                    max_order=max_order)), None)
     if first is None:
         return None
-    coarse = _parabolic_peak(r, first)
+    period_samples, repeats, error = refine_period(r, _parabolic_peak(r, first), limit=limit)
+    return Period(period_s=period_samples / sample_rate_hz, strength=float(prominence[first]), repeats=repeats,
+                  peak_lag=int(first), error_s=error / sample_rate_hz)
+
+
+def refine_period(r, coarse, *, limit):
+    """The period (lags, fractional) of the peaks of ``r`` near ``k coarse`` for k = 1, 2, .. below ``limit`` (each
+    the highest lag within 10 % of ``coarse`` of ``k coarse``, refined by a parabola), fitted as
+    ``tau_k = k T``; how many peaks took part; and the fit's standard error of T (lags) from the peaks' scatter
+    about ``k T`` (inf under three peaks)."""
     repeats = max(1, min(MAX_REPEATS, int(limit / coarse)))
     lags, ks = [], []
     for k in range(1, repeats + 1):
@@ -134,6 +145,8 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
         lags.append(_parabolic_peak(r, index))
         ks.append(k)
     ks, lags = np.asarray(ks, dtype=float), np.asarray(lags)
-    period_samples = float(np.dot(ks, lags) / np.dot(ks, ks))
-    return Period(period_s=period_samples / sample_rate_hz, strength=float(prominence[first]), repeats=len(ks),
-                  peak_lag=int(first))
+    period = float(np.dot(ks, lags) / np.dot(ks, ks))
+    if len(ks) < 3:
+        return period, len(ks), np.inf
+    scatter = np.sum(np.square(lags - ks * period)) / (len(ks) - 1)
+    return period, len(ks), float(np.sqrt(scatter / np.dot(ks, ks)))
