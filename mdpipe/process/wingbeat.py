@@ -20,6 +20,8 @@ its flap-glide cycle, for 3.97 Hz), the wingbeats within it repeat too.
 Where neither row set gives a period, a bird whose bursts hold only a few beats (the glides between
 them decay the whole record's pattern below the repeat test) is read within its flapping bursts only
 (:func:`gated_pattern_autocorrelation`): four geese and a pigeon of the evaluation sweep, `none` before.
+Where the whole record gives the period of a bird that glides, the bursts measure it again where their peaks
+line up more closely (:func:`_within_bursts`): the switches to gliding shift the whole record's peaks.
 
 A period under four frames is blurred by the frame (its lags lie within the frames' own overlap, and
 its peak can be missed for its double): it is read again with frames of a quarter of it (a sparrow
