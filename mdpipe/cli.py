@@ -499,8 +499,9 @@ def _import_in_background(modules):
     threading.Thread(target=load, daemon=True).start()
 
 
-def _gather(folder, *, figures):
-    """Write FOLDER/features.csv (and summary.png) from its captures' tables; print it; return the failures."""
+def _gather(folder, *, figures, early=None):
+    """Write FOLDER/features.csv (and summary.png) from its captures' tables; print it; return the failures.
+    ``early``: a :class:`mdpipe.batch.summary.EarlySummary` whose figure is taken if drawn from these rows."""
     from collections import Counter
 
     from mdpipe.report import tables
@@ -508,9 +509,13 @@ def _gather(folder, *, figures):
     columns, rows, errors = tables.gather(folder)
     tables.write_table(folder / tables.SUMMARY_TABLE, columns or list(tables.JSON_KEYS), rows)
     if figures and rows:
-        from mdpipe.report import plots
+        png = None if early is None else early.png(rows)
+        if png is not None:
+            tables.atomic_write(folder / "summary.png", lambda tmp: Path(tmp).write_bytes(png))
+        else:
+            from mdpipe.report import plots
 
-        plots.summary_figure(rows, folder / "summary.png")
+            plots.summary_figure(rows, folder / "summary.png")
     counts = Counter(row["class"] for row in rows)
     click.echo(f"{folder / tables.SUMMARY_TABLE}: {len(rows)} target rows from "
                f"{len({row['file'] for row in rows})} captures "
@@ -545,9 +550,16 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
     jobs = _jobs(inputs, out_dir, options, figures=not no_figures)
     progress = Progress(len(jobs), sys.stderr) if sys.stderr.isatty() else None
     counts = {"done": 0, "failed": 0, "up to date": 0}
+    early = None
+    if not no_figures and scheduler is None and workers > 1:
+        from mdpipe.batch.summary import EarlySummary
+
+        early = EarlySummary(out_dir, jobs)
 
     def tally(outcome):
         counts["failed" if outcome.failed else outcome.status] += 1
+        if early is not None:
+            early.outcome(outcome)
 
     def summary(outcomes):
         if progress is not None:
@@ -555,11 +567,11 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
         kept = sum(o.failed and o.status == "up to date" for o in outcomes)
         click.echo(f"{len(jobs)} captures: {counts['done']} processed, {counts['up to date']} up to date, "
                    f"{counts['failed']} failed" + (f" ({kept} of them unchanged since they failed)" if kept else ""))
-        _gather(out_dir, figures=not no_figures)
+        _gather(out_dir, figures=not no_figures, early=early)
 
     try:
         _run(jobs, on_outcome=tally, debug=debug, progress=progress, workers=workers, scheduler=scheduler,
-             track=True, finish=summary,
+             track=True, finish=summary, **({} if early is None else {"analysed": early.analysed}),
              started=lambda: None if no_figures else _import_in_background(["mdpipe.report.plots"]))
     except (KeyboardInterrupt, Terminated) as exc:
         click.echo(f"Interrupted after {sum(counts.values())} of {len(jobs)} captures; each capture is published "

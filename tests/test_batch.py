@@ -18,6 +18,7 @@ from click.testing import CliRunner
 
 from mdpipe.batch import manifest, unit
 from mdpipe.cli import main
+from mdpipe.params import FigureParams
 from mdpipe.report import tables
 
 SAMPLES = Path(__file__).resolve().parents[1] / "data_samples"
@@ -287,6 +288,86 @@ def test_a_worker_that_dies_fails_only_its_capture(tmp_path):
                                         "out of memory say, or a crash inside a library)")
     assert (tmp_path / "dies" / "gull_flyby.error.txt").exists()
     assert sorted(manifest.load(tmp_path)) == ["clutter_only", "gull_flyby", "phantom4_xband"]  # redone next run
+
+
+class KillsItsWorkerWhenDrawn(FigureParams):
+    """Figure options that end a worker process when its figures read them: a worker dying while it draws."""
+
+    def __getattribute__(self, name):
+        if name == "doppler_limits" and multiprocessing.parent_process() is not None:
+            os._exit(1)
+        return super().__getattribute__(name)
+
+
+def test_a_worker_that_dies_drawing_figures_fails_only_its_capture(tmp_path):
+    """A capture with figures is two pool tasks, its analysis and then its figures; a worker dying in the second
+    loses that capture's figures and whatever else it held: they are run again alone, and only the capture that
+    kills its worker is failed."""
+    from dataclasses import replace
+
+    from mdpipe.batch import runner
+    from mdpipe.params import ProcessParams
+
+    good = [unit.Job(str(SAMPLES / name), Path(name).stem, str(tmp_path), ProcessParams(),
+                     {"frame_counter": "auto", "overrides": {}})
+            for name in ("phantom4_xband.h5", "gull_flyby.h5", "clutter_only.h5")]
+    dying = replace(good[1], key="dies", figures=KillsItsWorkerWhenDrawn())
+    analysed = []
+    outcomes = {o.key: o for o in runner.run([good[0], dying, good[1], good[2]], workers=2,
+                                             analysed=lambda step: analysed.append(step.job.key))}
+    assert {key: o.status for key, o in outcomes.items()} == {
+        "phantom4_xband": "done", "gull_flyby": "done", "clutter_only": "done", "dies": "failed"}
+    assert "dies" in analysed  # it died after its analysis, in the figures' task
+    assert outcomes["dies"].message.endswith("its worker process died (killed by the system, out of memory say, "
+                                             "or a crash inside a library)")
+    assert (tmp_path / "dies" / "gull_flyby.error.txt").exists()
+    assert (tmp_path / "gull_flyby" / "gull_flyby_spectrum.png").exists()
+
+
+def test_the_folder_summary_is_drawn_before_the_last_figures(tmp_path, captures, monkeypatch):
+    """With a pool, OUT/summary.png is drawn as soon as every capture is analysed, from the rows their tables
+    will hold, while the pool draws the captures' figures: the drawing at the end is not called, and the figure
+    is the one the tables gathered at the end give, byte for byte."""
+    from mdpipe.report import plots
+
+    def late(rows, path):
+        raise AssertionError("the summary was drawn at the end")
+
+    monkeypatch.setattr(plots, "summary_figure", late)
+    out = tmp_path / "out"
+    result = batch(captures, "--out", out, "-j", 2)
+    assert result.exit_code == 0, result.output
+    _, rows, _ = tables.gather(out)
+    assert len(rows) == 3
+    assert (out / "summary.png").read_bytes() == plots.summary_png(rows)
+
+
+def test_an_early_summary_is_kept_only_for_the_rows_it_was_drawn_from(tmp_path):
+    """The summary drawn early is given for exactly the rows it was drawn from: the rows of OUT's tables as they
+    stand (an earlier run's capture), with the analysed captures' rows in place of their tables. Rows that
+    differ at the end (a capture whose outputs could not be written, a table changed meanwhile) get none."""
+    from mdpipe.batch.summary import EarlySummary
+    from mdpipe.params import ProcessParams
+    from mdpipe.report import plots
+
+    def job(name, key):
+        return unit.Job(str(SAMPLES / name), key, str(tmp_path), ProcessParams(), {"frame_counter": "auto",
+                                                                                     "overrides": {}})
+
+    unit.run(job("clutter_only.h5", "earlier"))  # published by an earlier run
+    jobs = [job("gull_flyby.h5", "a"), job("phantom4_xband.h5", "b")]
+    early = EarlySummary(tmp_path, jobs)
+    steps = [unit.analyse(j) for j in jobs]
+    for step in steps:  # matplotlib is not thread-safe: these figures are drawn before the summary's thread starts
+        unit.publish(step)
+    early.analysed(steps[0])
+    assert early.thread is None  # one capture is still being analysed
+    early.analysed(steps[1])
+    _, rows, _ = tables.gather(tmp_path)
+    assert [row["class"] for row in rows] == ["bird", "drone", "none"]  # a, b, earlier: the order of their paths
+    assert early.png(rows) == plots.summary_png(rows)
+    changed = [dict(row, **{"class": "bird"}) if row["class"] == "drone" else row for row in rows]
+    assert early.png(changed) is None
 
 
 def test_dask_missing_is_one_line(tmp_path, monkeypatch):

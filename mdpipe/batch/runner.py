@@ -4,6 +4,7 @@ manifest and lock.
 One process pool (``concurrent.futures.ProcessPoolExecutor``): its workers are forked from this process once
 it has imported mdpipe's processing modules, so the imports are paid once, not once per capture or worker
 (from a process that runs other threads, or off Linux, a ``forkserver`` that preloads those modules). A
+capture with figures is two of its tasks, the analysis and then the figures (see :func:`_pool_round`). A
 worker that dies (a segfault, the out-of-memory killer) breaks the pool: the captures it lost are run again
 one at a time, each in a fresh worker, so that the one that kills its worker is named (and failed) and the
 rest finish.
@@ -19,7 +20,7 @@ import signal
 import sys
 import threading
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import replace
 from pathlib import Path
@@ -120,26 +121,51 @@ def _context(preload):
     return context
 
 
-def _pool_round(jobs, workers, started):
-    """Yield the outcomes of ``jobs`` from one pool; return the jobs lost when a worker died."""
+@contextlib.contextmanager
+def _stops_blocked():
+    """SIGINT and SIGTERM held back: a pool forks (or starts) its workers in ``submit``, and a worker must not
+    meet them before its initializer has set them up."""
+    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+
+
+def _pool_round(jobs, workers, started, analysed):
+    """Yield the outcomes of ``jobs`` from one pool; return the jobs lost when a worker died.
+
+    A capture with figures is two tasks: its analysis, then (submitted as the analysis returns, behind the
+    analyses waiting) its figures and publication, which any worker may take: the workers stay busy to the
+    end, where whole captures left one idle while the other drew its last figures. ``analysed(step)`` hears of
+    each :class:`mdpipe.batch.unit.Analysed` as it returns.
+    """
     context = _context(PRELOAD + (PRELOAD_FIGURES if any(job.figures is not None for job in jobs) else []))
     executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_start_worker,
                                    initargs=(os.getpid(),))
     finished, lost = False, []
     try:
-        blocked = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)  # the workers are forked in submit
-        try:
-            futures = {executor.submit(unit.run, job): job for job in jobs}
-        finally:
-            signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+        with _stops_blocked():
+            futures = {executor.submit(unit.run if job.figures is None else unit.analyse, job): job for job in jobs}
         started()
-        for future in as_completed(futures):
-            try:
-                outcome = future.result()
-            except BrokenProcessPool:
-                lost.append(futures[future])
-                continue
-            yield outcome
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for future in done:
+                job = futures.pop(future)
+                try:
+                    step = future.result()
+                except BrokenProcessPool:
+                    lost.append(job)
+                    continue
+                if isinstance(step, unit.Analysed):
+                    analysed(step)
+                    with _stops_blocked():
+                        following = executor.submit(unit.publish, step)
+                    futures[following] = job
+                    pending.add(following)
+                else:
+                    yield step
         finished = True
     finally:
         if not finished:
@@ -159,11 +185,11 @@ def _largest_first(jobs):
     return sorted(jobs, key=size, reverse=True)
 
 
-def _pool(jobs, workers, started):
+def _pool(jobs, workers, started, analysed):
     queue, alone = _largest_first(jobs), False
     while queue:
         round_jobs, queue = (queue[:1], queue[1:]) if alone else (queue, [])
-        lost = yield from _pool_round(round_jobs, 1 if alone else min(workers, len(round_jobs)), started)
+        lost = yield from _pool_round(round_jobs, 1 if alone else min(workers, len(round_jobs)), started, analysed)
         started = _nothing
         if lost and alone:
             yield unit.failure(lost[0], f"{lost[0].capture}: its worker process died (killed by the system, out "
@@ -172,16 +198,17 @@ def _pool(jobs, workers, started):
             alone, queue = True, lost + queue
 
 
-def _nothing():
+def _nothing(*_):
     pass
 
 
-def execute(jobs, *, workers=1, scheduler=None, started=_nothing):
+def execute(jobs, *, workers=1, scheduler=None, started=_nothing, analysed=_nothing):
     """Yield the :class:`mdpipe.batch.unit.Outcome` of every job as it finishes (in any order).
 
     ``scheduler`` None: in this process for one worker, else a process pool of ``workers``; ``local`` or a
     ``tcp://host:port`` address: Dask (:mod:`mdpipe.batch.dask_runner`). ``started()`` is called once the
-    work is under way (after the pool's workers are forked: it may start threads).
+    work is under way (after the pool's workers are forked: it may start threads); ``analysed(step)`` with
+    each :class:`mdpipe.batch.unit.Analysed` capture before its figures are drawn (pool only).
     """
     if scheduler is not None:
         from mdpipe.batch import dask_runner
@@ -193,7 +220,7 @@ def execute(jobs, *, workers=1, scheduler=None, started=_nothing):
         for job in jobs:
             yield unit.run(job)
     else:
-        yield from _pool(jobs, workers, started)
+        yield from _pool(jobs, workers, started, analysed)
 
 
 def _save(out_dir, records, notify):
@@ -206,18 +233,18 @@ def _save(out_dir, records, notify):
 
 
 def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify=None, finish=None,
-        started=_nothing):
+        started=_nothing, analysed=_nothing):
     """Run ``jobs`` (all with one ``out_dir``, or None) under OUT's lock; returns their outcomes.
 
     With ``track`` the manifest decides what is redone and is updated as captures finish; without, the
     manifest forgets the captures published (they were made with other settings). Temporary folders left by an
     earlier interrupted or killed run are removed first. ``notify(text)`` hears of waits and warnings;
     ``finish(outcomes)`` runs at the end, still under the lock (the folder's summary); ``started()`` once the
-    work is under way (see :func:`execute`).
+    work is under way, ``analysed(step)`` as a capture's analysis returns (see :func:`execute`).
     """
     out_dir = jobs[0].out_dir if jobs else None
     if out_dir is None:
-        stream = execute(jobs, workers=workers, scheduler=scheduler, started=started)
+        stream = execute(jobs, workers=workers, scheduler=scheduler, started=started, analysed=analysed)
         return [_report(outcome, on_outcome) for outcome in stream]
     leftovers = [job.folder for job in jobs] + [Path(out_dir) / name for name in OUT_FILES]
     with locked(out_dir, notify):
@@ -231,7 +258,8 @@ def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify
             jobs = [replace(job, track=True, previous=records.get(job.key)) for job in jobs]
         outcomes, saved_at, interval_s = [], time.monotonic(), MANIFEST_INTERVAL_S
         try:
-            with contextlib.closing(execute(jobs, workers=workers, scheduler=scheduler, started=started)) as stream:
+            with contextlib.closing(execute(jobs, workers=workers, scheduler=scheduler, started=started,
+                                                  analysed=analysed)) as stream:
                 for outcome in stream:
                     if outcome.record is not None:
                         records[outcome.key] = outcome.record

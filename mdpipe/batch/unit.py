@@ -16,7 +16,7 @@ from mdpipe.batch import manifest
 from mdpipe import errors
 from mdpipe.errors import MdpipeError
 from mdpipe.params import FigureParams, ProcessParams
-from mdpipe.process.pipeline import process_capture
+from mdpipe.process.pipeline import CaptureResult, process_capture
 from mdpipe.report import tables
 
 DONE, FAILED, UP_TO_DATE = "done", "failed", "up to date"
@@ -130,8 +130,25 @@ def failure(job, message, trace=None, *, keep_trace=False, identity=None):
     return outcome
 
 
+@dataclass
+class Analysed:
+    """A capture read and analysed, its outputs not yet written: what :func:`publish` needs (it may be done in
+    another process: a pool runs the figures of one capture while others are analysed)."""
+
+    job: Job
+    result: CaptureResult
+    identity: Optional[dict]
+
+
 def run(job):
     """Read, analyse and publish ``job``'s capture; returns an :class:`Outcome` and never raises an Exception."""
+    step = analyse(job)
+    return publish(step) if isinstance(step, Analysed) else step
+
+
+def analyse(job):
+    """Read and analyse ``job``'s capture: an :class:`Analysed` to publish, or the :class:`Outcome` of a capture
+    that is up to date or failed (its error file published). Never raises an Exception."""
     identity = None
     try:
         if job.track:
@@ -145,6 +162,13 @@ def run(job):
     except Exception as exc:
         return failure(job, one_line(job.capture, exc), _trace(exc),
                        keep_trace=not isinstance(exc, (MdpipeError, OSError)), identity=identity)
+    return Analysed(job, result, identity)
+
+
+def publish(analysed):
+    """Write an analysed capture's tables and figures and publish them together; returns its :class:`Outcome`
+    (failed, its error file published instead, when they cannot be written). Never raises an Exception."""
+    job, result, identity = analysed.job, analysed.result, analysed.identity
     outcome = Outcome(job.capture, job.key, DONE, False, rows=result.rows)
     if job.out_dir is not None:
         try:

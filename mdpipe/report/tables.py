@@ -8,6 +8,7 @@ into a hidden temporary folder beside their final folder, which is then renamed 
 import contextlib
 import csv
 import errno
+import io
 import json
 import math
 import os
@@ -232,13 +233,40 @@ def gather(folder):
     return list(columns), rows, errors
 
 
+def gathered_rows(folder, replaced):
+    """The rows :func:`gather` would read from ``folder`` once the feature tables at the paths of ``replaced``
+    (path -> the rows :func:`write_features_csv` writes there) are written: those tables are taken from
+    ``replaced``, the others read as they stand."""
+    rows = []
+    for path in sorted(set(_published(folder, FEATURES_SUFFIX)[0]) | set(replaced)):
+        if path in replaced:
+            rows.extend(text_rows(replaced[path]))
+            continue
+        with contextlib.suppress(FileNotFoundError), open(path, newline="", encoding="utf-8") as fh:
+            rows.extend(csv.DictReader(fh))
+    return rows
+
+
+def text_rows(rows):
+    """``rows`` as :func:`gather` reads them back from the table :func:`write_features_csv` writes."""
+    records = [json_record(r) for r in rows]
+    buffer = io.StringIO(newline="")
+    _write_csv(buffer, list(records[0]), records)
+    buffer.seek(0)
+    return list(csv.DictReader(buffer))
+
+
+def _write_csv(fh, columns, rows):
+    writer = csv.DictWriter(fh, fieldnames=columns, restval="")
+    writer.writeheader()
+    writer.writerows(rows)
+
+
 def write_table(path, columns, rows):
     """Write text ``rows`` (dicts) under ``columns`` as one CSV, missing cells empty."""
     def write(tmp):
         with open(tmp, "w", newline="", encoding="utf-8") as fh:
-            writer = csv.DictWriter(fh, fieldnames=columns, restval="")
-            writer.writeheader()
-            writer.writerows(rows)
+            _write_csv(fh, columns, rows)
     atomic_write(path, write)
 
 
