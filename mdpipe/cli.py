@@ -496,7 +496,9 @@ def _import_in_background(modules):
             except Exception:  # noqa: BLE001 - the summary's own import reports it
                 return
 
-    threading.Thread(target=load, daemon=True).start()
+    from mdpipe.batch import runner
+
+    runner.start_thread(load)
 
 
 def _gather(folder, *, figures, early=None):
@@ -551,7 +553,7 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
     progress = Progress(len(jobs), sys.stderr) if sys.stderr.isatty() else None
     counts = {"done": 0, "failed": 0, "up to date": 0}
     early = None
-    if not no_figures and scheduler is None and workers > 1:
+    if not no_figures and scheduler is None and workers > 1 and len(jobs) > 1:  # a pool
         from mdpipe.batch.summary import EarlySummary
 
         early = EarlySummary(out_dir, jobs)

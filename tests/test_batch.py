@@ -299,10 +299,11 @@ class KillsItsWorkerWhenDrawn(FigureParams):
         return super().__getattribute__(name)
 
 
-def test_a_worker_that_dies_drawing_figures_fails_only_its_capture(tmp_path):
-    """A capture with figures is two pool tasks, its analysis and then its figures; a worker dying in the second
-    loses that capture's figures and whatever else it held: they are run again alone, and only the capture that
-    kills its worker is failed."""
+@pytest.mark.parametrize("stage", ["analysis", "figures"])
+def test_a_worker_that_dies_with_figures_to_draw_fails_only_its_capture(tmp_path, stage):
+    """A capture with figures is two pool tasks, its analysis and then its figures; a worker dying in either
+    loses what it held and breaks the pool: the captures not finished are run again alone, and only the one
+    that kills its worker is failed."""
     from dataclasses import replace
 
     from mdpipe.batch import runner
@@ -311,17 +312,35 @@ def test_a_worker_that_dies_drawing_figures_fails_only_its_capture(tmp_path):
     good = [unit.Job(str(SAMPLES / name), Path(name).stem, str(tmp_path), ProcessParams(),
                      {"frame_counter": "auto", "overrides": {}})
             for name in ("phantom4_xband.h5", "gull_flyby.h5", "clutter_only.h5")]
-    dying = replace(good[1], key="dies", figures=KillsItsWorkerWhenDrawn())
+    dying = replace(good[1], key="dies", **({"reader": KillsItsWorker()} if stage == "analysis" else
+                                            {"figures": KillsItsWorkerWhenDrawn()}))
     analysed = []
     outcomes = {o.key: o for o in runner.run([good[0], dying, good[1], good[2]], workers=2,
                                              analysed=lambda step: analysed.append(step.job.key))}
     assert {key: o.status for key, o in outcomes.items()} == {
         "phantom4_xband": "done", "gull_flyby": "done", "clutter_only": "done", "dies": "failed"}
-    assert "dies" in analysed  # it died after its analysis, in the figures' task
+    assert ("dies" in analysed) == (stage == "figures")
     assert outcomes["dies"].message.endswith("its worker process died (killed by the system, out of memory say, "
                                              "or a crash inside a library)")
     assert (tmp_path / "dies" / "gull_flyby.error.txt").exists()
     assert (tmp_path / "gull_flyby" / "gull_flyby_spectrum.png").exists()
+
+
+def test_each_capture_is_published_before_the_pool_analyses_more(tmp_path):
+    """The pool is handed as many tasks as it has workers, a capture's figures before the next analysis: the
+    first capture is published before the third is analysed (an interrupted run keeps what it did; queued
+    behind every analysis, nothing was published until all were done)."""
+    from mdpipe.batch import runner
+    from mdpipe.params import ProcessParams
+
+    jobs = [unit.Job(str(SAMPLES / "clutter_only.h5"), f"c{i}", str(tmp_path), ProcessParams(),
+                     {"frame_counter": "auto", "overrides": {}}) for i in range(5)]
+    events = []
+    runner.run(jobs, workers=2, analysed=lambda step: events.append("analysed"),
+               on_outcome=lambda outcome: events.append("published"))
+    assert events.count("analysed") == events.count("published") == 5
+    third = [i for i, event in enumerate(events) if event == "analysed"][2]
+    assert events.index("published") < third
 
 
 def test_the_folder_summary_is_drawn_before_the_last_figures(tmp_path, captures, monkeypatch):

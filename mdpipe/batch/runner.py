@@ -10,6 +10,7 @@ one at a time, each in a fresh worker, so that the one that kills its worker is 
 rest finish.
 """
 
+import collections
 import contextlib
 import fcntl
 import importlib
@@ -132,46 +133,70 @@ def _stops_blocked():
         signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
 
 
-def _pool_round(jobs, workers, started, analysed):
-    """Yield the outcomes of ``jobs`` from one pool; return the jobs lost when a worker died.
+def start_thread(target):
+    """Run ``target`` in a daemon thread that leaves SIGINT and SIGTERM to the main thread (Python runs their
+    handlers there; a thread the kernel picked to take them would let a stop through :func:`_stops_blocked`)."""
+    with _stops_blocked():
+        thread = threading.Thread(target=target, daemon=True)
+        thread.start()
+    return thread
 
-    A capture with figures is two tasks: its analysis, then (submitted as the analysis returns, behind the
-    analyses waiting) its figures and publication, which any worker may take: the workers stay busy to the
-    end, where whole captures left one idle while the other drew its last figures. ``analysed(step)`` hears of
-    each :class:`mdpipe.batch.unit.Analysed` as it returns.
+
+def _pool_round(jobs, workers, started, analysed):
+    """Yield the outcomes of ``jobs`` from one pool; return the jobs lost when a worker died (those it held,
+    and those not yet run: the pool is broken).
+
+    A capture with figures is two tasks: its analysis, then its figures and publication, which any worker may
+    take. Only ``workers`` tasks are handed to the pool at a time, and a capture's figures go before the next
+    analysis: each capture is published soon after its analysis (an interrupted run keeps what it did, and
+    this process holds no more than ``workers`` analyses), and once the last analysis returns, what is left is
+    figures, which the workers share. ``analysed(step)`` hears of each :class:`mdpipe.batch.unit.Analysed` as
+    it returns.
     """
     context = _context(PRELOAD + (PRELOAD_FIGURES if any(job.figures is not None for job in jobs) else []))
     executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_start_worker,
                                    initargs=(os.getpid(),))
-    finished, lost = False, []
+    waiting, running, lost, finished = collections.deque(jobs), {}, [], False
+
+    def submit(task, argument, job):
+        with _stops_blocked():  # the workers are forked (or started) in submit
+            running[executor.submit(task, argument)] = job
+
     try:
-        with _stops_blocked():
-            futures = {executor.submit(unit.run if job.figures is None else unit.analyse, job): job for job in jobs}
+        try:
+            while waiting and len(running) < workers:
+                job = waiting.popleft()
+                submit(unit.run if job.figures is None else unit.analyse, job, job)
+        except BrokenProcessPool:
+            lost.append(job)
         started()
-        pending = set(futures)
-        while pending:
-            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+        while running:
+            done, _ = wait(running, return_when=FIRST_COMPLETED)
+            outcomes = []
             for future in done:
-                job = futures.pop(future)
+                job = running.pop(future)
                 try:
                     step = future.result()
+                    if isinstance(step, unit.Analysed):
+                        analysed(step)
+                        submit(unit.publish, step, job)
+                    else:
+                        outcomes.append(step)
                 except BrokenProcessPool:
                     lost.append(job)
-                    continue
-                if isinstance(step, unit.Analysed):
-                    analysed(step)
-                    with _stops_blocked():
-                        following = executor.submit(unit.publish, step)
-                    futures[following] = job
-                    pending.add(following)
-                else:
-                    yield step
+            try:
+                while waiting and len(running) < workers and not lost:
+                    job = waiting.popleft()
+                    submit(unit.run if job.figures is None else unit.analyse, job, job)
+            except BrokenProcessPool:
+                lost.append(job)
+            yield from outcomes
         finished = True
     finally:
         if not finished:
             _stop_workers(executor)
         executor.shutdown(wait=True, cancel_futures=True)
-    return lost
+    return lost + list(waiting)
 
 
 def _largest_first(jobs):

@@ -11,9 +11,9 @@ matplotlib is not thread-safe (its settings are global; :mod:`mdpipe.report.plot
 nothing else may draw in the process while the thread does. The batch's own thread only waits on the pool.
 """
 
-import threading
 from pathlib import Path
 
+from mdpipe.batch import runner
 from mdpipe.report import tables
 
 
@@ -40,8 +40,7 @@ class EarlySummary:
     def _resolved(self, key):
         self.waiting.discard(key)
         if not self.waiting and self.thread is None:
-            self.thread = threading.Thread(target=self._draw, daemon=True)
-            self.thread.start()
+            self.thread = runner.start_thread(self._draw)
 
     def _draw(self):
         from mdpipe.report import plots
