@@ -447,6 +447,26 @@ def _terminate_self():
     time.sleep(5)
 
 
+def _threads():
+    from threadpoolctl import threadpool_info
+
+    from mdpipe.process import ranging
+    return sorted({pool["num_threads"] for pool in threadpool_info() if pool["user_api"] == "blas"}), ranging.WORKERS
+
+
+@pytest.mark.parametrize("workers", [1, 2, 64])
+def test_a_pool_worker_takes_its_share_of_the_cores(workers):
+    """A pool worker's BLAS runs one thread, and it reads captures in its share of the cores (one thread at
+    least, two at most): its siblings take the rest."""
+    from mdpipe.batch import runner
+
+    with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=runner._start_worker,
+                             initargs=(os.getpid(), workers)) as pool:
+        blas, readers = pool.submit(_threads).result(timeout=30)
+    assert blas == [1]
+    assert readers == max(1, min(2, (os.cpu_count() or 1) // workers))
+
+
 def test_a_forked_worker_ends_on_sigterm_whatever_handler_it_inherited():
     """The command's SIGTERM handler raises to unwind the batch; a worker forked under it must still just end
     when the pool stops it."""
@@ -456,7 +476,7 @@ def test_a_forked_worker_ends_on_sigterm_whatever_handler_it_inherited():
     previous = signal.signal(signal.SIGTERM, _stop)
     try:
         with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=runner._start_worker,
-                                 initargs=(os.getpid(),)) as pool:
+                                 initargs=(os.getpid(), 1)) as pool:
             with pytest.raises(BrokenProcessPool):
                 pool.submit(_terminate_self).result(timeout=30)
     finally:
@@ -527,7 +547,7 @@ def test_a_forked_worker_does_not_keep_out_locked(tmp_path):
 
     out = tmp_path / "out"
     pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=runner._start_worker,
-                               initargs=(os.getpid(),))
+                               initargs=(os.getpid(), 1))
     try:
         with runner.locked(out):
             assert pool.submit(os.getpid).result(timeout=30) != os.getpid()  # the worker runs

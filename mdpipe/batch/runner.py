@@ -29,6 +29,7 @@ from pathlib import Path
 from threadpoolctl import threadpool_limits
 
 from mdpipe.batch import manifest, unit
+from mdpipe.process import ranging
 from mdpipe.errors import MdpipeError
 from mdpipe.report import tables
 
@@ -90,13 +91,15 @@ def _watch(parent_pid):
     os._exit(1)
 
 
-def _start_worker(parent_pid):
+def _start_worker(parent_pid, workers):
     """Ctrl-C reaches the whole process group: the parent decides. SIGTERM (the pool stopping it) ends the
     worker, whatever handler a forked worker inherited; both were blocked from the fork until here. A
     forked worker closes its copy of OUT's lock. A worker ends with the batch's process. Its BLAS runs one
     thread: the pool's workers share the cores, and BLAS threads that wait for work spin on them (the bundled
-    samples' analyses took 0.67 s of CPU with two, 0.43 s with one, in the same time alone)."""
+    samples' analyses took 0.67 s of CPU with two, 0.43 s with one, in the same time alone); it reads and
+    transforms with its share of the cores (:func:`mdpipe.process.ranging.share_cores`)."""
     threadpool_limits(limits=1, user_api="blas")
+    ranging.share_cores(workers)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
@@ -160,7 +163,7 @@ def _pool_round(jobs, workers, started, analysed):
     """
     context = _context(PRELOAD + (PRELOAD_FIGURES if any(job.figures is not None for job in jobs) else []))
     executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_start_worker,
-                                   initargs=(os.getpid(),))
+                                   initargs=(os.getpid(), workers))
     waiting, running, lost, finished = collections.deque(jobs), {}, [], False
 
     def submit(task, argument, job):
