@@ -7,6 +7,9 @@ error (its traceback kept for the error file and ``--debug``), so the run goes o
 capture's published folder as it was.
 """
 
+import os
+import shutil
+import tempfile
 import traceback
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -84,18 +87,65 @@ class Outcome:
     record: Optional[dict] = None
 
 
-def _write_outputs(result, job, folder):
+def figures(result):
+    """The figures of an analysed capture: ``range``, and ``spectrogram`` and ``spectrum`` where it has targets."""
+    return ("range", "spectrogram", "spectrum") if result.analyses else ("range",)
+
+
+def _draw_figure(result, job, figure, folder):
+    from mdpipe.report import plots
+
+    path = folder / f"{Path(job.capture).stem}_{figure}.png"
+    if figure == "range":
+        plots.range_figure(result, path)
+    else:
+        getattr(plots, f"{figure}_figure")(result, path, job.figures)
+
+
+def _write_outputs(result, job, folder, staged=None):
+    """The tables into ``folder``, and the figures: drawn there, or moved from ``staged`` where :func:`draw`
+    drew them."""
     stem = folder / Path(job.capture).stem
     tables.write_features_csv(result.rows, stem.with_name(stem.name + tables.FEATURES_SUFFIX))
     tables.write_run_json(stem.with_name(stem.name + ".run.json"), capture=job.capture, params=job.params,
                           layout=result.layout, radar=result.params)
-    if job.figures is not None:
-        from mdpipe.report import plots
+    if staged is not None:
+        for path in sorted(Path(staged).iterdir()):
+            os.replace(path, folder / path.name)
+    elif job.figures is not None:
+        for figure in figures(result):
+            _draw_figure(result, job, figure, folder)
 
-        plots.range_figure(result, stem.with_name(stem.name + "_range.png"))
-        if result.analyses:
-            plots.spectrogram_figure(result, stem.with_name(stem.name + "_spectrogram.png"), job.figures)
-            plots.spectrum_figure(result, stem.with_name(stem.name + "_spectrum.png"), job.figures)
+
+@dataclass
+class DrawFailure:
+    """Why a figure could not be drawn (:func:`draw`): the capture's one-line error, its traceback, and whether
+    it was writing that failed (a full disk) rather than the drawing (a bug)."""
+
+    message: str
+    trace: str
+    writing: bool
+
+
+def stage(analysed):
+    """A new temporary folder beside ``analysed``'s output folder for :func:`draw` to draw its figures into
+    (named as :func:`mdpipe.report.tables.publish` names its own, so that the next run removes it if this one
+    is killed)."""
+    folder = analysed.job.folder
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    return tempfile.mkdtemp(prefix=f"{tables.PARTIAL_PREFIX}{folder.name}.", dir=folder.parent)
+
+
+def draw(analysed, figure, staged):
+    """Draw ``figure`` (one of :func:`figures`) of an analysed capture into the folder ``staged``, for
+    :func:`publish` to publish with the rest: a pool draws one capture's figures in several workers. Returns
+    None, or a :class:`DrawFailure`; never raises an Exception."""
+    try:
+        _draw_figure(analysed.result, analysed.job, figure, Path(staged))
+    except Exception as exc:
+        writing = isinstance(exc, OSError)
+        return DrawFailure(one_line(analysed.job.capture, exc, writing=writing), _trace(exc), writing)
+    return None
 
 
 def one_line(capture, exc, *, writing=False):
@@ -165,21 +215,32 @@ def analyse(job):
     return Analysed(job, result, identity)
 
 
-def publish(analysed):
+def publish(analysed, staged=None, drawn=()):
     """Write an analysed capture's tables and figures and publish them together; returns its :class:`Outcome`
-    (failed, its error file published instead, when they cannot be written). Never raises an Exception."""
+    (failed, its error file published instead, when they cannot be written). Never raises an Exception.
+
+    ``staged``: the folder (:func:`stage`) where its figures were drawn, with the :class:`DrawFailure` s of
+    those that were not in ``drawn``; it is removed.
+    """
     job, result, identity = analysed.job, analysed.result, analysed.identity
-    outcome = Outcome(job.capture, job.key, DONE, False, rows=result.rows)
-    if job.out_dir is not None:
-        try:
-            names = tables.publish(job.folder, lambda tmp: _write_outputs(result, job, Path(tmp)))
-        except Exception as exc:  # a full disk (OSError), or a figure that cannot be drawn (a bug: keep the trace)
-            writing = isinstance(exc, OSError)
-            return failure(job, one_line(job.capture, exc, writing=writing), _trace(exc), keep_trace=not writing,
+    try:
+        if drawn:
+            return failure(job, drawn[0].message, drawn[0].trace, keep_trace=not drawn[0].writing,
                            identity=identity)
-        if identity is not None:
-            outcome.record = {**identity, "status": "ok", "outputs": names}
-    return outcome
+        outcome = Outcome(job.capture, job.key, DONE, False, rows=result.rows)
+        if job.out_dir is not None:
+            try:
+                names = tables.publish(job.folder, lambda tmp: _write_outputs(result, job, Path(tmp), staged))
+            except Exception as exc:  # a full disk (OSError), or a figure that cannot be drawn (a bug: keep the trace)
+                writing = isinstance(exc, OSError)
+                return failure(job, one_line(job.capture, exc, writing=writing), _trace(exc), keep_trace=not writing,
+                               identity=identity)
+            if identity is not None:
+                outcome.record = {**identity, "status": "ok", "outputs": names}
+        return outcome
+    finally:
+        if staged is not None:
+            shutil.rmtree(staged, ignore_errors=True)
 
 
 def _trace(exc):
