@@ -326,6 +326,32 @@ def test_a_worker_that_dies_with_figures_to_draw_fails_only_its_capture(tmp_path
     assert (tmp_path / "gull_flyby" / "gull_flyby_spectrum.png").exists()
 
 
+def test_no_room_to_stage_figures_is_the_captures_one_line_error(tmp_path, monkeypatch):
+    """A pool draws a capture's figures into a temporary folder beside its output folder; where that folder
+    cannot be made (a full disk), the capture fails with the reason, its error file published, and the
+    batch's process draws nothing itself."""
+    from mdpipe.batch import runner
+    from mdpipe.params import ProcessParams
+    from mdpipe.report import plots
+
+    def full(analysed):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    def drawn_here(*args, **kwargs):
+        raise AssertionError("a figure drawn in the batch's process")
+
+    monkeypatch.setattr(unit, "stage", full)
+    for name in ("range_figure", "spectrogram_figure", "spectrum_figure"):
+        monkeypatch.setattr(plots, name, drawn_here)
+    jobs = [unit.Job(str(SAMPLES / name), Path(name).stem, str(tmp_path), ProcessParams(),
+                     {"frame_counter": "auto", "overrides": {}}) for name in ("gull_flyby.h5", "clutter_only.h5")]
+    outcomes = runner.run(jobs, workers=2)
+    assert sorted((o.status, o.message) for o in outcomes) == sorted(
+        ("failed", f"{job.capture}: cannot write its outputs: [Errno 28] No space left on device") for job in jobs)
+    assert sorted(published(tmp_path)) == ["clutter_only", "gull_flyby"]
+    assert (tmp_path / "gull_flyby" / "gull_flyby.error.txt").exists()
+
+
 def test_each_capture_is_published_before_the_pool_analyses_more(tmp_path):
     """The pool is handed as many tasks as it has workers, a capture's figures before the next analysis: the
     first capture is published before the third is analysed (an interrupted run keeps what it did; queued

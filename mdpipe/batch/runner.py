@@ -205,8 +205,8 @@ def _pool_round(jobs, workers, started, analysed):
             analysed(result)
             try:
                 staged[job.key] = _Staged(result, unit.stage(result), len(unit.figures(result.result)))
-            except OSError:  # no temporary folder (a full disk, a read-only OUT): the outcome tells
-                return unit.publish(result)
+            except OSError as exc:  # no temporary folder (a full disk, a read-only OUT); nothing drawn here
+                return unit.failure(job, unit.one_line(job.capture, exc, writing=True), identity=result.identity)
             ready.extend((job, name) for name in unit.figures(result.result))
             return None
         entry = staged[job.key]
