@@ -352,6 +352,42 @@ def test_no_room_to_stage_figures_is_the_captures_one_line_error(tmp_path, monke
     assert (tmp_path / "gull_flyby" / "gull_flyby.error.txt").exists()
 
 
+def test_a_pool_with_nothing_to_publish_returns_the_rows():
+    """Jobs with figures but no output folder (rows only, as ``process --json`` asks) run whole in the pool:
+    nothing is staged or drawn."""
+    from mdpipe.batch import runner
+    from mdpipe.params import ProcessParams
+
+    jobs = [unit.Job(str(SAMPLES / name), Path(name).stem, None, ProcessParams(), {"frame_counter": "auto",
+                                                                                   "overrides": {}})
+            for name in ("gull_flyby.h5", "phantom4_xband.h5")]
+    outcomes = sorted(runner.run(jobs, workers=2), key=lambda o: o.key)
+    assert [(o.key, o.status, [row["class"] for row in o.rows]) for o in outcomes] == [
+        ("gull_flyby", "done", ["bird"]), ("phantom4_xband", "done", ["drone"])]
+
+
+def test_a_pool_leaves_the_collector_as_it_found_it(tmp_path):
+    """The objects frozen out of the collector for the fork are released when the pool ends; objects the
+    caller froze itself stay frozen."""
+    import gc
+
+    from mdpipe.batch import runner
+    from mdpipe.params import ProcessParams
+
+    jobs = [unit.Job(str(SAMPLES / "clutter_only.h5"), f"c{i}", str(tmp_path), ProcessParams(),
+                     {"frame_counter": "auto", "overrides": {}}, figures=None) for i in range(2)]
+    assert gc.get_freeze_count() == 0
+    runner.run(jobs, workers=2)
+    assert gc.get_freeze_count() == 0
+    gc.freeze()
+    try:
+        frozen = gc.get_freeze_count()
+        runner.run(jobs, workers=2)
+        assert gc.get_freeze_count() == frozen
+    finally:
+        gc.unfreeze()
+
+
 def test_each_capture_is_published_before_the_pool_analyses_more(tmp_path):
     """The pool is handed as many tasks as it has workers, a capture's figures before the next analysis: the
     first capture is published before the third is analysed (an interrupted run keeps what it did; queued

@@ -122,14 +122,10 @@ def _context(preload):
     """How the pool starts its workers: forked from this process with ``preload`` imported, where that is safe
     (Linux, and no other Python thread, whose locks a fork would copy held; numpy's OpenBLAS threads
     prepare for a fork themselves, and no capture is open in this process); else from a fork server that
-    imports ``preload`` once (a fresh interpreter: 0.05 s more, and the imports paid a second time). Before a
-    fork, this process's objects are moved out of the collector's reach (``gc.freeze``): a worker's first full
-    collection walked all 74 000 of them (45 ms), touching and so copying their pages (a batch of the samples
-    2 % sooner)."""
+    imports ``preload`` once (a fresh interpreter: 0.05 s more, and the imports paid a second time)."""
     if sys.platform == "linux" and threading.active_count() == 1:
         for name in preload:
             importlib.import_module(name)
-        gc.freeze()  # until the pool ends: no collection in a worker walks (and so copies) what it inherited
         return multiprocessing.get_context("fork")
     context = multiprocessing.get_context("forkserver")
     context.set_forkserver_preload(preload)
@@ -163,7 +159,7 @@ class _Staged:
     step: unit.Analysed
     folder: str
     left: int
-    failures: list = field(default_factory=list)
+    failures: dict = field(default_factory=dict)
 
 
 def _pool_round(jobs, workers, started, analysed):
@@ -176,10 +172,22 @@ def _pool_round(jobs, workers, started, analysed):
     interrupted run keeps what it did, and this process holds no more than a few analyses), and the workers
     share the last captures' figures instead of one drawing them while the others idle. ``analysed(step)``
     hears of each :class:`mdpipe.batch.unit.Analysed` as it returns.
+
+    Before a fork, this process's objects are moved out of the collector's reach until the pool ends
+    (``gc.freeze``, unless something froze them already): a worker's first full collection walked all 74 000
+    of them (45 ms), touching and so copying their pages (a batch of the samples 2 % sooner).
     """
     context = _context(PRELOAD + (PRELOAD_FIGURES if any(job.figures is not None for job in jobs) else []))
-    executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_start_worker,
-                                   initargs=(os.getpid(), workers))
+    frozen = context.get_start_method() == "fork" and gc.get_freeze_count() == 0
+    if frozen:
+        gc.freeze()
+    try:
+        executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_start_worker,
+                                       initargs=(os.getpid(), workers))
+    except BaseException:
+        if frozen:
+            gc.unfreeze()
+        raise
     waiting, ready, running, staged, lost, finished = collections.deque(jobs), collections.deque(), {}, {}, [], False
 
     def fill():
@@ -189,9 +197,9 @@ def _pool_round(jobs, workers, started, analysed):
                 if ready:
                     job, figure = ready.popleft()
                     task, arguments = unit.draw, (staged[job.key].step, figure, staged[job.key].folder)
-                else:
+                else:  # a capture without figures to publish is one task
                     job, figure = waiting.popleft(), None
-                    task, arguments = (unit.run if job.figures is None else unit.analyse), (job,)
+                    task, arguments = (unit.run if job.figures is None or job.out_dir is None else unit.analyse), (job,)
                 with _stops_blocked():  # the workers are forked (or started) in submit
                     running[executor.submit(task, *arguments)] = (job, figure)
         except BrokenProcessPool:
@@ -212,11 +220,12 @@ def _pool_round(jobs, workers, started, analysed):
         entry = staged[job.key]
         entry.left -= 1
         if result is not None:
-            entry.failures.append(result)
+            entry.failures[figure] = result
         if entry.left:
             return None
-        del staged[job.key]
-        return unit.publish(entry.step, entry.folder, entry.failures)
+        del staged[job.key]  # the failures in the figures' order, as one task drawing them all would meet them
+        failures = [entry.failures[name] for name in unit.figures(entry.step.result) if name in entry.failures]
+        return unit.publish(entry.step, entry.folder, failures)
 
     try:
         fill()
@@ -241,7 +250,8 @@ def _pool_round(jobs, workers, started, analysed):
         if not finished:
             _stop_workers(executor)
         executor.shutdown(wait=True, cancel_futures=True)
-        gc.unfreeze()
+        if frozen:
+            gc.unfreeze()
         for entry in staged.values():  # the pool broke, or the run was stopped, while they were drawn
             shutil.rmtree(entry.folder, ignore_errors=True)
     lost += [entry.step.job for entry in staged.values() if entry.step.job not in lost]
