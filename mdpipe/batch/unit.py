@@ -182,8 +182,8 @@ def failure(job, message, trace=None, *, keep_trace=False, identity=None):
 
 @dataclass
 class Analysed:
-    """A capture read and analysed, its outputs not yet written: what :func:`publish` needs (it may be done in
-    another process: a pool runs the figures of one capture while others are analysed)."""
+    """A capture read and analysed, its outputs not yet written: what :func:`draw` and :func:`publish` need
+    (a pool draws its figures in other workers than the one that analysed it)."""
 
     job: Job
     result: CaptureResult
@@ -219,8 +219,9 @@ def publish(analysed, staged=None, drawn=()):
     """Write an analysed capture's tables and figures and publish them together; returns its :class:`Outcome`
     (failed, its error file published instead, when they cannot be written). Never raises an Exception.
 
-    ``staged``: the folder (:func:`stage`) where its figures were drawn, with the :class:`DrawFailure` s of
-    those that were not in ``drawn``; it is removed.
+    ``staged``: the folder (:func:`stage`) its figures were drawn into (:func:`draw`); they are published
+    from there, and it is removed. ``drawn``: the :class:`DrawFailure` s of those that could not be drawn,
+    in the figures' order (the first is the capture's error).
     """
     job, result, identity = analysed.job, analysed.result, analysed.identity
     try:
