@@ -16,7 +16,7 @@ import numpy as np
 from matplotlib import rc_context
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
-from matplotlib.ticker import LogLocator
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from mdpipe.params import FigureParams
 from mdpipe.physics.radar import doppler_hz, range_rate_from_doppler_mps
@@ -358,6 +358,11 @@ def _label(row):
     return f"{_name(row['file']).removesuffix('.h5')} #{int(row['target'])}{aliased}"
 
 
+def _plain(value, _position=None):
+    """A log axis' tick label as a plain number (0.05, 1, 300): read at a glance, and drawn without mathtext."""
+    return f"{value:g}"
+
+
 def _numbers(rows, key):
     """``row[key]`` of every row as floats, NaN where empty or null (the text cells of a gathered table, or
     numbers)."""
@@ -428,6 +433,8 @@ def summary(rows):
     ax.set_yscale("log")
     for axis in (ax.xaxis, ax.yaxis):  # minor ticks and grid at 2 and 5 only: each tick is an artist to draw
         axis.set_minor_locator(LogLocator(subs=MINOR_LOG_SUBS))
+        axis.set_major_formatter(FuncFormatter(_plain))  # 0.1, 1, 10: no mathtext (a quarter of the drawing)
+        axis.set_minor_formatter(NullFormatter())
     ax.set_xlim(*x_lim)
     ax.set_ylim(*y_lim)
     strip.set_xlim(-1, 1)
