@@ -388,6 +388,39 @@ def test_a_pool_leaves_the_collector_as_it_found_it(tmp_path):
         gc.unfreeze()
 
 
+def test_helper_threads_leave_the_stop_signals_to_the_main_thread():
+    """A thread started by the batch blocks SIGINT and SIGTERM: the kernel then hands them to the main thread,
+    which holds them back while it forks a worker (Python runs their handlers there anyway)."""
+    from mdpipe.batch import runner
+
+    masks = []
+    runner.start_thread(lambda: masks.append(signal.pthread_sigmask(signal.SIG_BLOCK, []))).join(timeout=10)
+    assert {signal.SIGINT, signal.SIGTERM} <= masks[0]
+    assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])  # the main thread's own is untouched
+
+
+def test_the_first_figure_that_fails_is_the_captures_error(tmp_path, monkeypatch):
+    """Where two of a capture's figures fail (drawn by two workers, in any order), its error is that of the
+    first in the figures' order, as one task drawing them all would meet it."""
+    from mdpipe.batch import runner
+    from mdpipe.params import ProcessParams
+    from mdpipe.report import plots
+
+    def broken(text, after_s):
+        def draw(*args, **kwargs):
+            time.sleep(after_s)
+            raise ValueError(text)
+        return draw
+
+    monkeypatch.setattr(plots, "spectrogram_figure", broken("the spectrogram", 0.3))  # it fails last
+    monkeypatch.setattr(plots, "spectrum_figure", broken("the spectrum", 0.0))
+    jobs = [unit.Job(str(SAMPLES / "gull_flyby.h5"), f"g{i}", str(tmp_path), ProcessParams(),
+                     {"frame_counter": "auto", "overrides": {}}) for i in range(2)]
+    outcomes = runner.run(jobs, workers=2)
+    assert [o.message.split(" (traceback")[0] for o in outcomes] == [
+        f"{SAMPLES / 'gull_flyby.h5'}: internal error, ValueError: the spectrogram"] * 2
+
+
 def test_each_capture_is_published_before_the_pool_analyses_more(tmp_path):
     """The pool is handed as many tasks as it has workers, a capture's figures before the next analysis: the
     first capture is published before the third is analysed (an interrupted run keeps what it did; queued
