@@ -39,7 +39,6 @@ LOCK_NAME = ".mdpipe.lock"
 OUT_FILES = (manifest.MANIFEST_NAME, tables.SUMMARY_TABLE, "summary.png")  # written into OUT itself
 MANIFEST_INTERVAL_S = 1.0  # the manifest is rewritten at most this often during a run (and at its end)
 PRELOAD = ["mdpipe.batch.unit"]
-STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
 _LOCK_FDS = set()  # OUT's lock, held by this process: a forked worker closes its copy (it must not keep OUT locked)
 PRELOAD_FIGURES = ["mdpipe.report.plots"]
 
@@ -104,7 +103,7 @@ def _start_worker(parent_pid, workers):
     ranging.share_cores(workers)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, tables.STOP_SIGNALS)
     for fd in list(_LOCK_FDS):
         with contextlib.suppress(OSError):
             os.close(fd)
@@ -132,21 +131,11 @@ def _context(preload):
     return context
 
 
-@contextlib.contextmanager
-def _stops_blocked():
-    """SIGINT and SIGTERM held back: a pool forks (or starts) its workers in ``submit``, and a worker must not
-    meet them before its initializer has set them up."""
-    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
-
-
 def start_thread(target):
     """Run ``target`` in a daemon thread that leaves SIGINT and SIGTERM to the main thread (Python runs their
-    handlers there; a thread the kernel picked to take them would let a stop through :func:`_stops_blocked`)."""
-    with _stops_blocked():
+    handlers there; a thread the kernel picked to take them would let a stop through
+    :func:`mdpipe.report.tables.stops_deferred`)."""
+    with tables.stops_deferred():
         thread = threading.Thread(target=target, daemon=True)
         thread.start()
     return thread
@@ -200,7 +189,7 @@ def _pool_round(jobs, workers, started, analysed):
                 else:  # a capture without figures to publish is one task
                     job, figure = waiting.popleft(), None
                     task, arguments = (unit.run if job.figures is None or job.out_dir is None else unit.analyse), (job,)
-                with _stops_blocked():  # the workers are forked (or started) in submit
+                with tables.stops_deferred():  # the workers are forked (or started) in submit
                     running[executor.submit(task, *arguments)] = (job, figure)
         except BrokenProcessPool:
             lost.append(job)

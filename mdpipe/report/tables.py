@@ -50,11 +50,15 @@ def atomic_write(path, write):
         raise
 
 
+STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
+
+
 @contextlib.contextmanager
-def _signals_deferred():
-    """SIGINT and SIGTERM held back (delivered on exit) so that a rename pair is never cut in two."""
-    held = {signal.SIGINT, signal.SIGTERM}
-    previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+def stops_deferred():
+    """SIGINT and SIGTERM held back in this thread (delivered on exit): a rename pair is never cut in two,
+    a pool's worker never meets them before its initializer has set them up, a helper thread never takes
+    them."""
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
     try:
         yield
     finally:
@@ -108,7 +112,7 @@ def publish(folder, write):
         names = sorted(p.name for p in tmp.iterdir())
         with open(tmp / MARKER, "w", encoding="utf-8") as fh:
             fh.write(f"mdpipe {__version__}\n")
-        with _signals_deferred():
+        with stops_deferred():
             while True:
                 try:
                     os.rename(tmp, folder)
