@@ -9,7 +9,6 @@ capture's published folder as it was.
 
 import os
 import shutil
-import tempfile
 import traceback
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -129,11 +128,8 @@ class DrawFailure:
 
 def stage(analysed):
     """A new temporary folder beside ``analysed``'s output folder for :func:`draw` to draw its figures into
-    (named as :func:`mdpipe.report.tables.publish` names its own, so that the next run removes it if this one
-    is killed)."""
-    folder = analysed.job.folder
-    folder.parent.mkdir(parents=True, exist_ok=True)
-    return tempfile.mkdtemp(prefix=f"{tables.PARTIAL_PREFIX}{folder.name}.", dir=folder.parent)
+    (:func:`mdpipe.report.tables.temporary_folder`: the next run removes it if this one is killed)."""
+    return str(tables.temporary_folder(analysed.job.folder))
 
 
 def draw(analysed, figure, staged):

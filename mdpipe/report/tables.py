@@ -94,6 +94,14 @@ def _set_aside(folder):
     return trash
 
 
+def temporary_folder(folder):
+    """A new hidden folder beside ``folder`` (its parents made), named so that :func:`remove_partials` removes
+    it after a kill."""
+    folder = Path(folder)
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    return Path(tempfile.mkdtemp(prefix=f"{PARTIAL_PREFIX}{folder.name}.", dir=folder.parent))
+
+
 def publish(folder, write):
     """Publish one capture's outputs: ``write(tmp_folder)`` fills a hidden temporary folder, which then replaces
     ``folder`` (its old content, stale or not, goes). Returns the names of the files published.
@@ -103,8 +111,7 @@ def publish(folder, write):
     that mdpipe published (it holds :data:`MARKER`) is ever replaced.
     """
     folder = Path(folder)
-    folder.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f"{PARTIAL_PREFIX}{folder.name}.", dir=folder.parent))
+    tmp = temporary_folder(folder)
     trash = None
     try:
         os.chmod(tmp, file_mode(folder=True))  # as a file's: the umask of now
