@@ -200,11 +200,12 @@ def _pool_round(jobs, workers, started, analysed):
             return result
         if figure is None:
             analysed(result)
+            names = unit.figures(result.result)
             try:
-                staged[job.key] = _Staged(result, unit.stage(result), len(unit.figures(result.result)))
+                staged[job.key] = _Staged(result, unit.stage(result), len(names))
             except OSError as exc:  # no temporary folder (a full disk, a read-only OUT); nothing drawn here
                 return unit.failure(job, unit.one_line(job.capture, exc, writing=True), identity=result.identity)
-            ready.extend((job, name) for name in unit.figures(result.result))
+            ready.extend((job, name) for name in names)
             return None
         entry = staged[job.key]
         entry.left -= 1
