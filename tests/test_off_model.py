@@ -34,6 +34,12 @@ def sweep_row(tmp_path, radar, target, *, moving_snr_db, seed, **params):
     return process_capture(path, ProcessParams(**params)).rows[0]
 
 
+def assert_wingbeat(row, wingbeat_hz, *, rel):
+    """The row is a bird whose wingbeat is given (status ok) within ``rel`` of ``wingbeat_hz``."""
+    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
+    assert row["wingbeat_freq_hz"] == pytest.approx(wingbeat_hz, rel=rel)
+
+
 def test_rotors_at_unequal_rates_each_resolved(tmp_path):
     """Four rotors 1-4 % apart: each comb's K-th line is K x 0.8-3.2 Hz from its neighbour's, resolved
     from K >= 3 at 2 Hz; each rate within a tenth of a bin (0.1 Hz / 2 = 0.05 rev/s), their median reported."""
@@ -96,8 +102,7 @@ def test_wingbeat_from_three_beats(tmp_path):
     mapping["noise"] = {"snr_db": 40.0}
     path, _ = simulate(tmp_path, mapping)
     row = process_capture(path, ProcessParams()).rows[0]
-    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
-    assert row["wingbeat_freq_hz"] == pytest.approx(3.0, rel=0.01)
+    assert_wingbeat(row, 3.0, rel=0.01)
     mapping["radar"]["n_chirps"] = 2800  # 0.7 s: 2.1 wingbeats, the period cannot be seen to repeat
     path, _ = simulate(tmp_path, mapping, name="short.h5")
     row = process_capture(path, ProcessParams()).rows[0]
@@ -144,8 +149,7 @@ def test_fast_wingbeat_at_77_ghz(tmp_path):
                "motion": {"position_m": [30.0, 5.0, 5.0], "velocity_mps": [-6.0, 4.0, 0.0]}}
     path, _ = simulate(tmp_path, scene_mapping(W77, [sparrow], noise={"snr_db": 10.0}, seed=5))
     row = process_capture(path, ProcessParams()).rows[0]
-    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
-    assert row["wingbeat_freq_hz"] == pytest.approx(15.5, rel=0.01)
+    assert_wingbeat(row, 15.5, rel=0.01)
 
 
 def test_body_doppler_drifting_past_the_span_end(tmp_path):
@@ -178,8 +182,7 @@ def test_wingbeat_of_a_bird_whose_wing_band_aliases(tmp_path):
     row = process_capture(path, ProcessParams()).rows[0]
     assert row["aliased"] and row["micro_doppler_halfwidth_mps_status"] == "aliased"
     assert 1.0 <= row["micro_doppler_halfwidth_mps"] <= 10.0
-    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
-    assert row["wingbeat_freq_hz"] == pytest.approx(4.0, rel=0.01)
+    assert_wingbeat(row, 4.0, rel=0.01)
 
 
 def test_rotors_a_few_per_cent_apart_seen_briefly(tmp_path):
@@ -330,8 +333,7 @@ def test_wingbeat_of_a_bird_gliding_between_flapping_bursts(tmp_path):
               "forearm_m": 0.157785, "body_rcs_m2": 0.0174294, "wing_rcs_m2": 0.0097006,
               "motion": {"position_m": [49.8736, -7.00584, 10.2082], "velocity_mps": [-9.7298, 3.00406, 0.0]}}
     row = sweep_row(tmp_path, radar, pigeon, moving_snr_db=11.2139, seed=1469921155)
-    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
-    assert row["wingbeat_freq_hz"] == pytest.approx(5.34426, rel=0.01)
+    assert_wingbeat(row, 5.34426, rel=0.01)
 
 
 def test_a_flap_glide_cycle_is_not_the_wingbeat(tmp_path):
@@ -348,8 +350,7 @@ def test_a_flap_glide_cycle_is_not_the_wingbeat(tmp_path):
             "body_rcs_m2": 0.00909997, "wing_rcs_m2": 0.0011676,
             "motion": {"position_m": [68.8037, 15.575, 16.3072], "velocity_mps": [-4.6787, -7.56866, 0.0]}}
     row = sweep_row(tmp_path, radar, crow, moving_snr_db=5.26369, seed=2090479518)
-    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
-    assert row["wingbeat_freq_hz"] == pytest.approx(3.96801, rel=0.01)
+    assert_wingbeat(row, 3.96801, rel=0.01)
 
 
 def test_rotors_evenly_phased_at_one_rate_do_not_tell_n(tmp_path):
@@ -433,8 +434,7 @@ def test_a_heron_flying_along_the_line_of_sight_is_a_bird(tmp_path):
              "motion": {"position_m": [45.9832, -1.25964, 12.6633], "velocity_mps": [8.17597, 0.469366, 0.0]}}
     row = sweep_row(tmp_path, radar, heron, moving_snr_db=-8.99213, seed=1300344300)
     assert row["micro_doppler_halfwidth_mps"] < 1.0 and abs(row["body_velocity_mps"]) > 2.0
-    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
-    assert row["wingbeat_freq_hz"] == pytest.approx(2.4101, rel=0.01)
+    assert_wingbeat(row, 2.4101, rel=0.01)
 
 
 def test_a_pigeon_flying_past_is_a_bird(tmp_path):
@@ -452,8 +452,7 @@ def test_a_pigeon_flying_past_is_a_bird(tmp_path):
               "motion": {"position_m": [21.54, 13.5673, 7.6828], "velocity_mps": [-11.684, -8.09639, 0.0]}}
     row = sweep_row(tmp_path, radar, pigeon, moving_snr_db=27.6398, seed=689651267)
     assert 3.0 < row["micro_doppler_halfwidth_mps"] < 6.0
-    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
-    assert row["wingbeat_freq_hz"] == pytest.approx(6.61434, rel=0.01)
+    assert_wingbeat(row, 6.61434, rel=0.01)
 
 
 def test_a_pattern_spreading_like_slow_wings_on_a_still_body_is_no_bird():
@@ -493,8 +492,7 @@ def test_wingbeat_within_short_flapping_bursts(tmp_path, radar, goose, snr_db, s
     94 GHz goose's wingbeat drifts 4.6 %: its repeat at 3T falls short, and with the 3T test of the other looks
     its wingbeat was withheld: the gated look tests the repeat at 2T only."""
     row = sweep_row(tmp_path, radar, goose, moving_snr_db=snr_db, seed=seed)
-    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
-    assert row["wingbeat_freq_hz"] == pytest.approx(goose["wingbeat_hz"], rel=0.01)
+    assert_wingbeat(row, goose["wingbeat_hz"], rel=0.01)
 
 
 def test_wingbeat_of_a_bird_whose_burst_ends_within_the_dwell_is_read_within_it(tmp_path):
@@ -510,8 +508,7 @@ def test_wingbeat_of_a_bird_whose_burst_ends_within_the_dwell_is_read_within_it(
              "body_rcs_m2": 0.0803621, "wing_rcs_m2": 0.0241141,
              "motion": {"position_m": [11.604, 7.2327, 18.4504], "velocity_mps": [-4.07823, -6.31752, 0.0]}}
     row = sweep_row(tmp_path, radar, goose, moving_snr_db=9.50797, seed=1173152855)
-    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
-    assert row["wingbeat_freq_hz"] == pytest.approx(2.41964, rel=0.01)
+    assert_wingbeat(row, 2.41964, rel=0.01)
 
 
 def test_flapping_bursts_under_two_beats_give_no_wingbeat(tmp_path):
@@ -538,8 +535,7 @@ def test_a_fast_wingbeat_within_one_frame_is_read_again_sharper(tmp_path):
                "forearm_m": 0.0564601, "body_rcs_m2": 0.000782688, "wing_rcs_m2": 0.000670053,
                "motion": {"position_m": [27.3903, -4.39612, 22.5393], "velocity_mps": [5.9441, -6.85408, 0.0]}}
     row = sweep_row(tmp_path, radar, sparrow, moving_snr_db=2.61041, seed=1350296078)
-    assert row["class"] == "bird" and row["wingbeat_freq_hz_status"] == "ok"
-    assert row["wingbeat_freq_hz"] == pytest.approx(14.6148, rel=0.03)
+    assert_wingbeat(row, 14.6148, rel=0.03)
 
 
 def test_three_blade_flashes_read_on_their_tip_side(tmp_path):
