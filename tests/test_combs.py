@@ -74,3 +74,28 @@ def test_a_comb_stays_itself_against_its_sub_multiples(between):
     lines = _lines_at(200.0 if between is None else 100.0, scores, spectrum(n=8192, prf_hz=8192.0))
     comb = _candidate(lines, 200.0, 3100.0)
     assert combs._fundamental_comb(lines, comb, half_width_hz=3100.0, min_hz=20.0) is comb
+
+
+def _falling_pattern(d, *, step, orders=8, seed=2):
+    """Scores of a comb at 77 Hz that fall along the band (10 at order 1 to 3 at order ``orders``, the
+    envelope of a rotor seen nearly face-on) plus noise of 0.2, every ``d``-th line ``step`` higher."""
+    rng = np.random.default_rng(seed)
+    k = np.arange(1, orders + 1)
+    trend = 10.0 - 7.0 * (k - 1) / (orders - 1)
+    scores = trend + rng.normal(0, 0.2, orders) + (step * (k % d == 0) if d else 0.0)
+    return _lines_at(77.0, scores, spectrum(n=8192, prf_hz=8192.0))
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_every_nth_line_stronger_is_read_over_the_bands_fall(d):
+    """Every d-th line 2.4 stronger than its neighbours, on scores falling 7 over the band (eight orders a side
+    for d = 2, twelve for d = 3): over the plain means of the others the fall outweighs the step (the former
+    test's t was 1.1 on a sweep drone's 2-blade rotor, one blade 1.7x brighter); over the trend it is N = d."""
+    lines = _falling_pattern(d, step=2.4, orders=4 * d)
+    assert combs.blade_count_from_line_pattern(lines, 77.0, half_width_hz=77.0 * 4 * d + 30) == d
+
+
+def test_a_falling_comb_without_a_pattern_tells_no_blade_count():
+    for seed in range(20):
+        lines = _falling_pattern(0, step=0.0, orders=12, seed=seed)
+        assert combs.blade_count_from_line_pattern(lines, 77.0, half_width_hz=77.0 * 12 + 30) is None
