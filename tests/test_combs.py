@@ -99,3 +99,27 @@ def test_a_falling_comb_without_a_pattern_tells_no_blade_count():
     for seed in range(20):
         lines = _falling_pattern(0, step=0.0, orders=12, seed=seed)
         assert combs.blade_count_from_line_pattern(lines, 77.0, half_width_hz=77.0 * 12 + 30) is None
+
+
+def _flash_train(*, receding_delay, receding_share, prf_hz=20000.0, chopping_hz=150.0, n=20000, seed=4):
+    """Blade flashes every chopping period: an approaching one on the positive side of the span (a 0.2 ms
+    pulse about +3 kHz) and a receding one (about -3 kHz, ``receding_share`` of its amplitude)
+    ``receding_delay`` chopping periods later, in noise 30 dB down."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) / prf_hz
+    period = 1.0 / chopping_hz
+    phase = lambda delay: (t - delay * period + period / 2) % period - period / 2  # noqa: E731
+    pulse = lambda delay: np.exp(-0.5 * (phase(delay) / 1e-4) ** 2)  # noqa: E731
+    signal = pulse(0) * np.exp(2j * np.pi * 3000 * t) + receding_share * pulse(receding_delay) * np.exp(
+        -2j * np.pi * 3000 * t)
+    return signal + 0.03 * (rng.normal(size=n) + 1j * rng.normal(size=n)), prf_hz, chopping_hz
+
+
+@pytest.mark.parametrize("delay, odd", [(0.5, True), (0.0, False)])
+def test_blade_parity_from_the_sides_the_flashes_fall_on(delay, odd):
+    """An odd N's flashes alternate sides (receding half a chopping period after approaching), an even N's
+    span both at once. The receding flash is half as strong here: the power then repeats once per chopping
+    period either way, and its lines (the former test) read even for both."""
+    signal, prf_hz, chopping_hz = _flash_train(receding_delay=delay, receding_share=0.5)
+    assert combs.odd_blades(signal, chopping_hz, prf_hz=prf_hz, half_width_hz=6000.0) is odd
+    assert combs.flashes_doubled(signal, chopping_hz, prf_hz=prf_hz, half_width_hz=6000.0) is False

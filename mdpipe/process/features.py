@@ -532,7 +532,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     chopping_value = float(np.median(chopping_hz))
     parity = None if aliased else combs.odd_blades(micro, float(chopping_hz[0]), prf_hz=prf_hz,
                                                    half_width_hz=count_band_hz)
-    blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades)
+    doubled = parity if aliased or parity is not None else combs.flashes_doubled(
+        micro, float(chopping_hz[0]), prf_hz=prf_hz, half_width_hz=count_band_hz)
+    blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades, doubled=doubled)
     if conflict:
         note = f"chopping frequency uncertain and rotation not estimable: {conflict}"
         return Rotation(Measured(chopping_value, "blade_conflict", note), withheld("blade_conflict", note),
@@ -542,6 +544,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes an even blade count (an "
                             f"odd one flashes twice per chopping period: {chopping_value / 2:.4g} Hz; give --blades)")
     elif source == "assumed" and parity:
+        chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes equal blades (the flashes "
+                            f"alternate sides: an odd count; with one blade differing this comb lines the turn rate "
+                            f"and the chopping is {3 * chopping_value:.4g} Hz or more; give --blades)")
+    elif source == "assumed" and doubled:
         chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes equal blades of an odd "
                             f"count (an even count with one blade differing lines its turn rate in this comb: the "
                             f"chopping would be {2 * chopping_value:.4g} Hz or more; give --blades)")
@@ -602,24 +608,25 @@ def _power_flashes_as(pattern, spacing_hz, power):
     return flashes_per_turn > 2 and _agrees(1.0 / power.period_s / flashes_hz)
 
 
-def _blade_count(measured, parity, *, n_blades):
+def _blade_count(measured, parity, *, n_blades, doubled=None):
     """(N, source, conflict sentence or None): given, measured from the echo, or assumed.
 
-    ``measured``: N from blade imbalance lines (or None); ``parity``: True for odd-N flash doubling,
-    False for even, None when unclear.
+    ``measured``: N from blade imbalance lines (or None); ``parity``: True for flashes alternating sides
+    (odd N), False for both sides at once (even), None when unclear; ``doubled``: the power repeats twice per
+    comb spacing (an odd N, or an even one's turn comb), from which an odd N is assumed.
     """
     if n_blades is not None:
         if measured is not None and measured != n_blades:
             return n_blades, "given", (f"{n_blades} blades given, but the lines between the chopping lines show "
                                        f"{measured} blades of unequal reflectivity")
         if parity is not None and parity != bool(n_blades % 2):
-            return n_blades, "given", (f"{n_blades} blades given, but the flashes come "
-                                       f"{'twice' if parity else 'once'} per chopping period "
-                                       f"({'odd' if parity else 'even'} N)")
+            return n_blades, "given", (f"{n_blades} blades given, but " + ("the flashes alternate sides of the "
+                                       "Doppler span (odd N)" if parity else "every flash spans both sides of the "
+                                       "Doppler span (even N)"))
         return n_blades, "given", None
     if measured is not None:
         return measured, "measured", None
-    return (ASSUMED_ODD_BLADES if parity else ASSUMED_EVEN_BLADES), "assumed", None
+    return (ASSUMED_ODD_BLADES if doubled else ASSUMED_EVEN_BLADES), "assumed", None
 
 
 def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_hz, wavelength_m, noise_power, params,
