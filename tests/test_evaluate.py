@@ -71,8 +71,14 @@ def test_rotation_needs_a_knowable_blade_count():
     assert scoring.rotation_estimable(DRONE) == (True, "")
     unknown = dataclasses.replace(DRONE, blades_given=False)
     assert scoring.rotation_estimable(unknown) == (False, "blades_unknown")
-    assert scoring.rotation_estimable(dataclasses.replace(unknown, n_blades=3)) == (True, "")  # odd N: 2N flashes
+    # an odd N's flashes tell that N is odd and the chopping frequency N f_rot, not N: 3 and 5 blades alike
+    assert scoring.rotation_estimable(dataclasses.replace(unknown, n_blades=3)) == (False, "blades_unknown")
+    assert scoring.rotation_estimable(dataclasses.replace(unknown, n_blades=3, imbalanced=True)) == (True, "")
     assert scoring.rotation_estimable(dataclasses.replace(unknown, imbalanced=True)) == (True, "")
+    # the lines a blade 1.3x brighter adds stand 17.7 dB under the chopping lines; they must be detectable too
+    tagged = dataclasses.replace(unknown, imbalanced=True, imbalance_line_db=scoring.imbalance_line_db([1.0, 1.3]))
+    assert scoring.rotation_estimable(dataclasses.replace(tagged, micro_line_snr_db=31.0)) == (True, "")
+    assert scoring.rotation_estimable(dataclasses.replace(tagged, micro_line_snr_db=30.0)) == (False, "blades_unknown")
     # 3 turns at 80 rev/s take 37.5 ms
     assert scoring.rotation_estimable(dataclasses.replace(DRONE, dwell_s=0.03)) == (False, "dwell_short")
     assert scoring.rotation_estimable(dataclasses.replace(DRONE, micro_line_snr_db=12.0)) == (False, "below_noise")
@@ -83,6 +89,13 @@ def test_rotation_needs_a_knowable_blade_count():
     assert scoring.rotation_estimable(face_on) == (False, "few_lines")
     assert scoring.rotation_estimable(dataclasses.replace(face_on, tip_doppler_hz=face_on.tip_doppler_hz * 0.0306
                                                           / 0.00319)) == (True, "")
+
+
+def test_imbalance_lines_of_unequal_blades():
+    """Two blades 1 and g: (g - 1) / (g + 1) in amplitude; three blades 1, 1, g: |g - 1| / (g + 2)."""
+    assert scoring.imbalance_line_db([1.0, 1.3]) == pytest.approx(20 * np.log10(0.3 / 2.3))
+    assert scoring.imbalance_line_db([1.0, 1.0, 2.0]) == pytest.approx(20 * np.log10(1.0 / 4.0))
+    assert scoring.imbalance_line_db([1.0, 1.0]) == float("-inf")
 
 
 def test_blade_length_rules():

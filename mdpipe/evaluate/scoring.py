@@ -44,7 +44,9 @@ class Physics:
     ``micro_line_snr_db`` is the SNR of one spectral line of the moving parts (blades, wings) after the
     range FFT (gain ``n_samples / 3``: a real IF's positive bin through a Hann window), coherent RX
     combining (``n_channels``) and the dwell (``n_chirps``), the moving parts' power shared among the
-    lines that fill their Doppler extent (see :func:`line_count`). ``body_line_snr_db`` is the body
+    lines that fill their Doppler extent (see :func:`line_count`); ``imbalance_line_db``, the strongest line
+    that unequal blades add at a turn-rate order between the chopping lines, against those
+    (:func:`imbalance_line_db`). ``body_line_snr_db`` is the body
     line's SNR in the frames a track follows it with: a line sweeping B Hz over the dwell T stays in one
     bin of a frame sqrt(T / B) long (B T >= 1), whose SNR is the dwell's over sqrt(B T) (over the whole
     dwell its power spreads over B T bins); of the body's power only ``body_kept_share`` counts, what the
@@ -65,6 +67,7 @@ class Physics:
     blades_given: bool = False
     elevation_given: bool = False
     imbalanced: bool = False
+    imbalance_line_db: float = 0.0
     tip_doppler_hz: float = 0.0
     body_doppler_max_hz: float = 0.0
     body_kept_share: float = 1.0
@@ -110,8 +113,10 @@ def rotation_estimable(p):
     harmonics a side, the least a comb is read from (2 blades of 12 cm at 80 rev/s: 1.3 at X band and
     87 deg, 8 at 94 GHz and 88 deg); the chopping frequency ``N f_rot`` of the fastest rotor is below
     PRF / 2 (else the line that gives the rate aliases); and the blade count is knowable: given to the
-    processing, or told by the echo (odd N flashes twice per blade per turn; unequal blades add lines at
-    ``f_rot``).
+    processing, or told by the echo (unequal blades add lines at orders of ``f_rot``, the rate itself, which
+    must stand ``LINE_SNR_DB`` out: 17.7 dB under the chopping lines for 2 blades 1.3x apart). Equal blades of
+    an odd N flash twice per blade passage, one side of the Doppler span at a time: the echo tells that N is
+    odd and the chopping frequency N f_rot, not whether N is 3 or 5, so not f_rot.
     Returns ``(estimable, reason)``, reason ``""`` when estimable.
     """
     if p.kind != "multirotor":
@@ -124,7 +129,7 @@ def rotation_estimable(p):
         return False, "few_lines"
     if rotor.chopping_frequency_hz(max(p.rotor_rates_hz), n_blades=p.n_blades) >= p.prf_hz / 2:
         return False, "chopping_aliased"
-    if not (p.blades_given or p.n_blades % 2 == 1 or p.imbalanced):
+    if not (p.blades_given or (p.imbalanced and p.micro_line_snr_db + p.imbalance_line_db >= LINE_SNR_DB)):
         return False, "blades_unknown"
     return True, ""
 
@@ -372,7 +377,8 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
                        n_blades=rotors.blades, blade_length_m=rotors.blade_length_m,
                        elevation_deg=target.elevation_deg, blades_given=process.get("n_blades") is not None,
                        elevation_given="elevation_deg" in process,
-                       imbalanced=expected["blade_imbalance"], tip_doppler_hz=tip_hz)
+                       imbalanced=expected["blade_imbalance"],
+                       imbalance_line_db=imbalance_line_db(expected["blade_gains"]), tip_doppler_hz=tip_hz)
     if kind == "bird":
         spread_hz = 4.0 * wing_speed_max_mps(target) / wavelength_m
         lines = line_count(spread_hz + sweep_hz, target.wingbeat_hz, prf_hz=prf_hz)
@@ -380,6 +386,23 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
         return Physics(**base, micro_line_snr_db=_db(micro / noise_v2 * gain / lines),
                        wingbeat_hz=target.wingbeat_hz, flap_run_s=flap_run_s)
     return Physics(**base)
+
+
+def imbalance_line_db(gains):
+    """The strongest line unequal blades (amplitude ``gains``, one per blade) add between the chopping lines,
+    in dB against the chopping lines; -inf for equal blades.
+
+    A rotor's echo is the sum of its blades' echoes, blade i delayed by i / N of a turn: its line at order m of
+    the turn rate carries ``sum_i g_i exp(-2 pi j m i / N)``, ``sum_i g_i`` at the chopping lines (m a multiple
+    of N). Two blades: ``((g1 - g2) / (g1 + g2))^2``.
+    """
+    g = np.asarray(gains, dtype=np.float64)
+    n = len(g)
+    if n < 2 or np.ptp(g) == 0:
+        return float("-inf")
+    orders = np.arange(1, n)[:, None]
+    lines = np.abs(np.exp(-2j * np.pi * orders * np.arange(n)[None, :] / n) @ g) ** 2
+    return float(10 * np.log10(lines.max() / np.sum(g) ** 2))
 
 
 def _db(ratio):
