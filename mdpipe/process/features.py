@@ -493,6 +493,12 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # one blade differs: the echo repeats once a turn, the comb is its N-fold chopping
             if len(chopping_hz) == 1:
                 chopping_hz = np.array([timed_hz * measured_n])
+        elif (not aliased and measured_n is None and ratio > 1 and (k := _whole_ratio(ratio)) and n_blades in (None, k)
+              and combs.blade_count_from_line_pattern(lines, float(chopping_hz[0]), half_width_hz=count_band_hz) == k):
+            # every k-th line of the (strongest) comb stands out and the echo repeats each 1/k of the combs' period:
+            # each comb is a turn of k blades, one differing (an unfolded comb's sub-multiples leave half its
+            # lines empty)
+            chopping_hz, measured_n = chopping_hz * k, k
         elif aliased and not _whole_ratio(ratio):  # folded combs coincide by chance; flash times do not
             chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
         else:
