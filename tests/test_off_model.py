@@ -366,12 +366,13 @@ def test_a_3_blade_rotor_whose_power_repeats_once_per_chopping_period(tmp_path):
     assert row["rotation_rate_hz"] == pytest.approx(np.median(np.abs(rates)), rel=0.01)
 
 
-def test_a_turn_comb_whose_echo_repeats_each_half_turn_tells_2_blades(tmp_path):
+def test_a_turn_comb_whose_echo_repeats_each_half_turn_is_read_under_the_least_blade_count(tmp_path):
     """A quadrotor of the default sweep (clutter left out) at X band, no blade count given: 2-blade rotors, one
     blade 1.41x the other. The combs lie at the turn rates (127.7 and 132.6 Hz), every second line stronger,
     and the echo repeats each half turn (256.8 Hz): old code called comb and period a whole multiple apart
-    and withheld the rate. Both tell N = 2, measured; each comb a rotor's rate within 0.3 %, their median the
-    mean rate within 1.5 %."""
+    and gave nothing. The echo's rate is the chopping frequency (within 1.5 % of twice the mean rate); the
+    rates rest on N = 2, the least count these allow (4 or 6 blades whose lines between stay under the noise
+    would give the same), and say so; each comb a rotor's rate within 0.3 %."""
     radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=66.645e-6, chirp_period_s=83.3063e-6,
                  sample_rate_hz=1920624.2047865558, n_samples=128, n_chirps=2048, n_channels=1)
     rates = (127.884, -127.182, 127.68, -132.801)
@@ -383,11 +384,29 @@ def test_a_turn_comb_whose_echo_repeats_each_half_turn_tells_2_blades(tmp_path):
                        "tilt_deg": [-0.526197, 4.41922, 1.90943, -0.42404], "blades": 2, "arm_m": 0.128718,
                        "blade_length_m": 0.117857, "rev_per_s": list(rates), "blade_gains": [1.0, 1.41465]}}
     row = sweep_row(tmp_path, radar, quad, moving_snr_db=19.2601, seed=1368699567)
-    assert row["class"] == "drone" and row["rotation_rate_hz_status"] == "ok"
-    assert row["n_blades"] == 2 and row["n_blades_source"] == "measured"
+    assert row["class"] == "drone" and row["chopping_freq_hz_status"] == "ok"
+    assert row["chopping_freq_hz"] == pytest.approx(2 * np.mean(np.abs(rates)), rel=0.015)
+    assert row["n_blades"] == 2 and row["n_blades_source"] == "assumed"
+    assert row["rotation_rate_hz_status"] == "assumed_blades"
     for rate in row["rotor_rates_hz"]:
         assert min(abs(rate / abs(r) - 1) for r in rates) < 0.003
-    assert row["rotation_rate_hz"] == pytest.approx(np.mean(np.abs(rates)), rel=0.015)
+
+
+def test_a_six_blade_comb_at_a_third_of_the_chopping_is_no_measured_turn(tmp_path):
+    """One 6-blade rotor at 60 rev/s at 24 GHz, one blade 1.31x: its comb lies at 3 f_rot (180 Hz), every second
+    line stronger, and the echo repeats each blade passage (360 Hz); the lines between stay under the noise. Read
+    as a turn of 2 blades it gives 180 rev/s: that rests on N = 2 assumed and says so; the chopping frequency,
+    the echo's rate, is right within 0.5 %."""
+    radar = K_BAND | {"n_chirps": 4000}
+    target = {"type": "multirotor", "name": "hex", "motion": {"position_m": [30.0, 0.0, 0.0]}, "body_rcs_m2": 0.0,
+              "elevation_deg": 48.9326, "rotors": {"count": 1, "arm_m": 0.186, "blades": 6,
+                                                  "blade_length_m": 0.0788816, "rev_per_s": [59.9945],
+                                                  "phase_deg": [223.526], "blade_gains": [1.30856, 1, 1, 1, 1, 1]}}
+    path, _ = simulate(tmp_path, scene_mapping(radar, [target], noise={"snr_db": 6.90484}, seed=401168))
+    row = process_capture(path, ProcessParams()).rows[0]
+    assert row["rotation_rate_hz_status"] == "assumed_blades" and row["n_blades_source"] == "assumed"
+    assert row["chopping_freq_hz_status"] == "ok"
+    assert row["chopping_freq_hz"] == pytest.approx(6 * 59.9945, rel=0.005)
 
 
 def test_wingbeat_of_a_bird_gliding_between_flapping_bursts(tmp_path):

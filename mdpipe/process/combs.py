@@ -369,7 +369,7 @@ def blade_count_from_line_pattern(lines, spacing_hz, *, half_width_hz):
     """N when every N-th line of the comb at ``spacing_hz`` stands out (the comb is a turn, one blade differs).
 
     For d = 2 .. MAX_BLADES the line scores are fitted, each side of 0 Hz, by a trend (a linear spline
-    with knots ``2 d`` orders apart or more) plus a step ``delta`` at the orders that are multiples of d
+    with knots about ``2 d`` orders apart or more) plus a step ``delta`` at the orders that are multiples of d
     (:func:`pattern_step`). A comb's scores fall towards the band's edges, and over the handful of orders
     of a rotor seen nearly face-on that fall outweighs the pattern in plain means (a 2-blade rotor with one
     blade 1.7x brighter, eight orders a side: every even line 2.4 stronger than its odd neighbours, yet 1.6
@@ -392,20 +392,21 @@ def pattern_step(positive, negative, order, d):
     """(step, t) of the scores at multiples of ``d`` over a trend, or None when too few scores for it.
 
     ``positive``, ``negative``: line scores at orders ``order`` (1..K) above and below 0 Hz. Least squares
-    of both sides' scores on a linear spline per side (knots evenly spaced, at least ``2 d`` orders apart,
+    of both sides' scores on a linear spline per side (knots evenly spaced, about ``2 d`` orders apart or more,
     at most ``PATTERN_KNOTS`` a side: the envelope's fall, not the pattern) and one step common to the
     multiples of d; t is the step over its standard error, from the fit's residuals.
     """
     count = len(order)
-    knots = np.linspace(order[0], order[-1], int(np.clip(count // (2 * d) + 1, 2, PATTERN_KNOTS)))
+    n_knots = int(np.clip(count // (2 * d) + 1, 2, PATTERN_KNOTS))
+    if 2 * count - (2 * n_knots + 1) < MIN_PATTERN_DOF:
+        return None
+    knots = np.linspace(order[0], order[-1], n_knots)
     hats = np.clip(1 - np.abs(order[:, None] - knots[None, :]) / (knots[1] - knots[0]), 0, None)
     zero = np.zeros_like(hats)
     step = (order % d == 0).astype(float)
     design = np.vstack([np.hstack([hats, zero, step[:, None]]), np.hstack([zero, hats, step[:, None]])])
     scores = np.concatenate([positive, negative])
     dof = len(scores) - design.shape[1]
-    if dof < MIN_PATTERN_DOF:
-        return None
     coef, _, rank, _ = np.linalg.lstsq(design, scores, rcond=None)
     if rank < design.shape[1]:
         return None
@@ -463,7 +464,7 @@ def odd_blades(signal, chopping_hz, *, prf_hz, half_width_hz):
     spectrum = np.fft.fft(x)
     outer = min(half_width_hz, prf_hz / 2)
     period = prf_hz / chopping_hz
-    if period < 4:  # half a period under two chirps: the two lags are not apart
+    if period < 8:  # the lags 0 and half a period, each read within +-1 chirp, at least two chirps apart
         return None
     sides = []
     for keep in (f_hz > SIDE_INNER * outer) & (f_hz <= outer), (f_hz < -SIDE_INNER * outer) & (f_hz >= -outer):

@@ -432,14 +432,16 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
       flashes shorter than a chirp, seen stroboscopically).
     When both are found they must agree within ``AGREEMENT`` (the time domain then refines a single
     rotor's value: it averages over the whole dwell); a whole-number ratio is an ambiguity and
-    nothing is reported. Flash times twice a folded comb are an odd N (flashing twice per chopping
+    nothing is reported, unless the comb is unfolded, every k-th of its lines stands out and the echo's rate is
+    k times its spacing: the chopping is then the echo's rate, the rate the comb's under N = k assumed (the
+    least count: one blade differing). Flash times twice a folded comb are an odd N (flashing twice per chopping
     period) or an even N with one blade differing (the comb lines the turn rate): the blade count,
     given or measured, tells which; without it nothing is reported. A chopping frequency that rests
     on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade
     turning that fast could make (``r cos(beta) < MIN_BLADE_REACH_M``) is not a rotor.
-    Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines,
-    odd-N flash doubling), else assumed; those tests read the lines within ``dense_half_width_hz`` (the
-    band's dense part): the single lines beyond it, searched for combs, carry the
+    Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines), else
+    assumed (odd where the flashes alternate sides of the span); those tests read the lines within
+    ``dense_half_width_hz`` (the band's dense part): the single lines beyond it, searched for combs, carry the
     rotors' mutual beats as much as a blade pattern (read there, N came out 3 and 5 for 2-blade rotors).
     Without a body line (``body_found`` False) the comb is first centred on the Doppler it lies about
     (:func:`mdpipe.process.combs.comb_offset_hz`).
@@ -466,7 +468,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     if ambiguity is not None and comb is None:
         note = f"rotation not estimable: {ambiguity}"
         return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
-    chopping_hz, measured_n, flashes_only = None, None, False
+    chopping_hz, measured_n, least_n, flashes_only = None, None, None, False
     if comb is not None:
         chopping_hz, measured_n = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
                                                band_hz=count_band_hz, n_blades=n_blades, power=power)
@@ -493,12 +495,12 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # one blade differs: the echo repeats once a turn, the comb is its N-fold chopping
             if len(chopping_hz) == 1:
                 chopping_hz = np.array([timed_hz * measured_n])
-        elif (not aliased and measured_n is None and ratio > 1 and (k := _whole_ratio(ratio)) and n_blades in (None, k)
+        elif (not aliased and n_blades is None and measured_n is None and ratio > 1 and (k := _whole_ratio(ratio))
               and combs.blade_count_from_line_pattern(lines, float(chopping_hz[0]), half_width_hz=count_band_hz) == k):
-            # every k-th line of the (strongest) comb stands out and the echo repeats each 1/k of the combs' period:
-            # each comb is a turn of k blades, one differing (an unfolded comb's sub-multiples leave half its
-            # lines empty)
-            chopping_hz, measured_n = chopping_hz * k, k
+            # every k-th line of the (strongest) comb stands out and the echo repeats k times per comb period: the
+            # echo's rate is the chopping; the comb a turn of k blades, one differing, or of 2k or 3k whose lines
+            # between stay under the noise (a 6-blade rotor's comb lay at 3 f_rot): k is the least count
+            chopping_hz, least_n = chopping_hz * k, k
         elif aliased and not _whole_ratio(ratio):  # folded combs coincide by chance; flash times do not
             chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
         else:
@@ -541,6 +543,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     doubled = parity if aliased or parity is not None else combs.flashes_doubled(
         micro, float(chopping_hz[0]), prf_hz=prf_hz, half_width_hz=count_band_hz)
     blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades, doubled=doubled)
+    if source == "assumed" and least_n:
+        blades = least_n
     if conflict:
         note = f"chopping frequency uncertain and rotation not estimable: {conflict}"
         return Rotation(Measured(chopping_value, "blade_conflict", note), withheld("blade_conflict", note),
@@ -559,7 +563,12 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                             f"chopping would be {2 * chopping_value:.4g} Hz or more; give --blades)")
     rates = tuple(sorted(float(rotor.rotation_rate_from_chopping_hz(c, n_blades=blades)) for c in chopping_hz))
     rate = float(np.median(rates))
-    if source == "assumed":
+    if source == "assumed" and least_n:
+        measured = Measured(rate, "assumed_blades", f"rotation rate assumes N = {blades} blades, the least the echo "
+                            f"allows (every {blades}th line of the comb stands out and the echo repeats {blades} times "
+                            f"per comb period: one blade differing; {2 * blades} or {3 * blades} blades whose lines "
+                            "between stay under the noise would turn 1/2 or 1/3 as fast; give --blades)")
+    elif source == "assumed":
         measured = Measured(rate, "assumed_blades", f"rotation rate assumes N = {blades} blades (the echo does not "
                             "tell the blade count; give --blades)")
     else:
