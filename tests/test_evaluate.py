@@ -73,10 +73,13 @@ def test_rotation_needs_a_knowable_blade_count():
     assert scoring.rotation_estimable(unknown) == (False, "blades_unknown")
     # an odd N's flashes tell that N is odd and the chopping frequency N f_rot, not N: 3 and 5 blades alike
     assert scoring.rotation_estimable(dataclasses.replace(unknown, n_blades=3)) == (False, "blades_unknown")
-    assert scoring.rotation_estimable(dataclasses.replace(unknown, n_blades=3, imbalanced=True)) == (True, "")
-    assert scoring.rotation_estimable(dataclasses.replace(unknown, imbalanced=True)) == (True, "")
+    # one blade 2x: its lines stand 12 dB (3 blades) or 9.5 dB (2) under the chopping lines, 30 dB out here
+    odd_tagged = dataclasses.replace(unknown, n_blades=3, imbalance_line_db=scoring.imbalance_line_db([1.0, 1.0, 2.0]))
+    assert scoring.rotation_estimable(odd_tagged) == (True, "")
+    assert scoring.rotation_estimable(dataclasses.replace(unknown, imbalance_line_db=scoring.imbalance_line_db(
+        [1.0, 2.0]))) == (True, "")
     # the lines a blade 1.3x brighter adds stand 17.7 dB under the chopping lines; they must be detectable too
-    tagged = dataclasses.replace(unknown, imbalanced=True, imbalance_line_db=scoring.imbalance_line_db([1.0, 1.3]))
+    tagged = dataclasses.replace(unknown, imbalance_line_db=scoring.imbalance_line_db([1.0, 1.3]))
     assert scoring.rotation_estimable(dataclasses.replace(tagged, micro_line_snr_db=31.0)) == (True, "")
     assert scoring.rotation_estimable(dataclasses.replace(tagged, micro_line_snr_db=30.0)) == (False, "blades_unknown")
     # 3 turns at 80 rev/s take 37.5 ms

@@ -46,7 +46,7 @@ class Physics:
     combining (``n_channels``) and the dwell (``n_chirps``), the moving parts' power shared among the
     lines that fill their Doppler extent (see :func:`line_count`); ``imbalance_line_db``, the strongest line
     that unequal blades add at a turn-rate order between the chopping lines, against those
-    (:func:`imbalance_line_db`). ``body_line_snr_db`` is the body
+    (:func:`imbalance_line_db`; -inf for equal blades). ``body_line_snr_db`` is the body
     line's SNR in the frames a track follows it with: a line sweeping B Hz over the dwell T stays in one
     bin of a frame sqrt(T / B) long (B T >= 1), whose SNR is the dwell's over sqrt(B T) (over the whole
     dwell its power spreads over B T bins); of the body's power only ``body_kept_share`` counts, what the
@@ -66,8 +66,7 @@ class Physics:
     elevation_deg: float = 0.0
     blades_given: bool = False
     elevation_given: bool = False
-    imbalanced: bool = False
-    imbalance_line_db: float = 0.0
+    imbalance_line_db: float = float("-inf")
     tip_doppler_hz: float = 0.0
     body_doppler_max_hz: float = 0.0
     body_kept_share: float = 1.0
@@ -129,7 +128,7 @@ def rotation_estimable(p):
         return False, "few_lines"
     if rotor.chopping_frequency_hz(max(p.rotor_rates_hz), n_blades=p.n_blades) >= p.prf_hz / 2:
         return False, "chopping_aliased"
-    if not (p.blades_given or (p.imbalanced and p.micro_line_snr_db + p.imbalance_line_db >= LINE_SNR_DB)):
+    if not (p.blades_given or p.micro_line_snr_db + p.imbalance_line_db >= LINE_SNR_DB):
         return False, "blades_unknown"
     return True, ""
 
@@ -377,7 +376,6 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
                        n_blades=rotors.blades, blade_length_m=rotors.blade_length_m,
                        elevation_deg=target.elevation_deg, blades_given=process.get("n_blades") is not None,
                        elevation_given="elevation_deg" in process,
-                       imbalanced=expected["blade_imbalance"],
                        imbalance_line_db=imbalance_line_db(expected["blade_gains"]), tip_doppler_hz=tip_hz)
     if kind == "bird":
         spread_hz = 4.0 * wing_speed_max_mps(target) / wavelength_m

@@ -468,10 +468,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     if ambiguity is not None and comb is None:
         note = f"rotation not estimable: {ambiguity}"
         return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
-    chopping_hz, measured_n, least_n, flashes_only = None, None, None, False
+    chopping_hz, measured_n, pattern, least_n, flashes_only = None, None, None, None, False
     if comb is not None:
-        chopping_hz, measured_n = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
-                                               band_hz=count_band_hz, n_blades=n_blades, power=power)
+        chopping_hz, measured_n, pattern = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
+                                                        band_hz=count_band_hz, n_blades=n_blades, power=power)
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
         ratio = timed_hz / centre
@@ -496,7 +496,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             if len(chopping_hz) == 1:
                 chopping_hz = np.array([timed_hz * measured_n])
         elif (not aliased and n_blades is None and measured_n is None and ratio > 1 and (k := _whole_ratio(ratio))
-              and combs.blade_count_from_line_pattern(lines, float(chopping_hz[0]), half_width_hz=count_band_hz) == k):
+              and pattern == k):
             # every k-th line of the (strongest) comb stands out and the echo repeats k times per comb period: the
             # echo's rate is the chopping; the comb a turn of k blades, one differing, or of 2k or 3k whose lines
             # between stay under the noise (a 6-blade rotor's comb lay at 3 f_rot): k is the least count
@@ -542,9 +542,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                                                    half_width_hz=count_band_hz)
     doubled = parity if aliased or parity is not None else combs.flashes_doubled(
         micro, float(chopping_hz[0]), prf_hz=prf_hz, half_width_hz=count_band_hz)
-    blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades, doubled=doubled)
-    if source == "assumed" and least_n:
-        blades = least_n
+    blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades, doubled=doubled, least=least_n)
     if conflict:
         note = f"chopping frequency uncertain and rotation not estimable: {conflict}"
         return Rotation(Measured(chopping_value, "blade_conflict", note), withheld("blade_conflict", note),
@@ -577,7 +575,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
 
 
 def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None, power=lambda: None):
-    """Chopping frequencies from comb spacings, and the blade count where the line pattern tells it.
+    """Chopping frequencies from comb spacings, the blade count where the line pattern tells it, and that
+    pattern (the N of the first comb's every N-th line standing out, confirmed or not; None without one).
 
     A comb whose every N-th line stands out is a rotor's turn seen through one blade that differs:
     its chopping frequency is N times the spacing. A comb with weaker lines between its lines is the
@@ -591,11 +590,11 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     """
     pattern = combs.blade_count_from_line_pattern(lines, float(spacing_hz[0]), half_width_hz=band_hz)
     if pattern and pattern == n_blades and not aliased:
-        return spacing_hz * pattern, pattern
+        return spacing_hz * pattern, pattern, pattern
     if pattern and _power_flashes_as(pattern, spacing_hz, power()):
-        return spacing_hz * pattern, pattern
+        return spacing_hz * pattern, pattern, pattern
     if aliased:
-        return spacing_hz, None
+        return spacing_hz, None, pattern
     if pattern:
         # rotors at equal rates whose phases cancel some lines leave a pattern too; a tagged rotor's echo
         # repeats almost exactly each 1/N turn, and exactly each turn
@@ -603,8 +602,8 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
         turn = prf_hz / float(spacing_hz[0])
         at = lambda lag: float(r[max(int(round(lag)) - 2, 0):int(round(lag)) + 3].max())  # noqa: E731
         if at(turn / pattern) >= TAGGED_REPEAT and at(turn) > at(turn / pattern):
-            return spacing_hz * pattern, pattern
-    return spacing_hz, combs.blade_count_from_sublines(lines, float(spacing_hz[0]), half_width_hz=band_hz)
+            return spacing_hz * pattern, pattern, pattern
+    return spacing_hz, combs.blade_count_from_sublines(lines, float(spacing_hz[0]), half_width_hz=band_hz), pattern
 
 
 def _power_flashes_as(pattern, spacing_hz, power):
@@ -623,12 +622,13 @@ def _power_flashes_as(pattern, spacing_hz, power):
     return flashes_per_turn > 2 and _agrees(1.0 / power.period_s / flashes_hz)
 
 
-def _blade_count(measured, parity, *, n_blades, doubled=None):
+def _blade_count(measured, parity, *, n_blades, doubled=None, least=None):
     """(N, source, conflict sentence or None): given, measured from the echo, or assumed.
 
     ``measured``: N from blade imbalance lines (or None); ``parity``: True for flashes alternating sides
     (odd N), False for both sides at once (even), None when unclear; ``doubled``: the power repeats twice per
-    comb spacing (an odd N, or an even one's turn comb), from which an odd N is assumed.
+    comb spacing (an odd N, or an even one's turn comb), from which an odd N is assumed; ``least``: the least
+    count the echo allows, assumed before either.
     """
     if n_blades is not None:
         if measured is not None and measured != n_blades:
@@ -641,7 +641,7 @@ def _blade_count(measured, parity, *, n_blades, doubled=None):
         return n_blades, "given", None
     if measured is not None:
         return measured, "measured", None
-    return (ASSUMED_ODD_BLADES if doubled else ASSUMED_EVEN_BLADES), "assumed", None
+    return (least or (ASSUMED_ODD_BLADES if doubled else ASSUMED_EVEN_BLADES)), "assumed", None
 
 
 def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_hz, wavelength_m, noise_power, params,
