@@ -222,7 +222,8 @@ def _fundamental_comb(lines, comb, *, half_width_hz, min_hz):
     return refined if refined is not None and refined.t >= COMB_T else comb
 
 
-def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ, max_hz=MAX_CHOP_HZ, lines=None):
+def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ, max_hz=MAX_CHOP_HZ, lines=None,
+               folded=None):
     """Chopping frequencies (Hz) of the rotors in a body-free echo ``signal``, strongest first; None when no
     comb stands out.
 
@@ -237,6 +238,9 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
         when the band is aliased: positions are folded.
     lines : LineSpectrum, optional
         The whole-dwell :func:`line_spectrum` of ``signal``, when the caller has it already.
+    folded : bool, optional
+        Whether the band folds (lines of high orders wrap into the span); by default where ``half_width_hz``
+        reaches ``prf_hz / 2``. An unfolded band searched over the whole span is not folded.
 
     1. Coarse search over ``min_hz .. max_hz`` on a Welch spectrum of ``COARSE_SEGMENT_S`` segments
        with up to ``MAX_COARSE_HARMONICS`` lines a side, among combs with ``t >= COMB_T``. The comb's
@@ -282,7 +286,9 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
         first, held = _held_search(lines, guess - width, guess + width, half_width_hz=half_width_hz), True
     if first is None or first.t < COMB_T:
         return None
-    if not held and half_width_hz < prf_hz / 2:  # folded lines fall between a comb's and fake its sub-multiples
+    if folded is None:
+        folded = half_width_hz >= prf_hz / 2
+    if not folded:  # folded lines fall between a comb's and fake its sub-multiples
         first = _fundamental_comb(lines, first, half_width_hz=half_width_hz, min_hz=max(min_hz, MIN_FUNDAMENTAL_HZ))
     found = [first]
     while len(found) < MAX_ROTORS:
@@ -337,6 +343,14 @@ def fundamental_hz(lines, spacing_hz, *, half_width_hz):
     values = comb_statistics(lines, spacing_hz / divisors, half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS)[0]
     strong = divisors[np.nan_to_num(values, nan=-np.inf) >= FUNDAMENTAL_SHARE * reference]
     return float(spacing_hz / strong.max()) if len(strong) else float(spacing_hz)
+
+def comb_extent_hz(lines, spacing_hz, *, half_width_hz):
+    """How far out (Hz) the comb at ``spacing_hz`` holds: its orders (``MIN_HARMONICS`` up, within
+    ``half_width_hz``, at most ``MAX_FINE_HARMONICS``) where its t is largest, times the spacing."""
+    orders = comb_statistics(lines, spacing_hz, half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS,
+                             min_orders=MIN_HARMONICS)[2][0]
+    return float(orders * spacing_hz)
+
 
 def _orders(spacing_hz, half_width_hz, limit):
     """Line orders 1..K on each side whose positions lie within the band (at most ``limit``)."""

@@ -452,6 +452,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(withheld("dwell_short", note), withheld("dwell_short", note))
     band_hz = prf_hz / 2 if aliased else half_width_hz
     count_band_hz = band_hz if aliased else min(dense_half_width_hz, band_hz)
+    sides_band_hz = count_band_hz  # where the flashes' Doppler sides are read (blade parity)
     micro = demodulated - np.mean(demodulated)  # the body, demodulated to 0 Hz; combs score lines from f_chop up
     if not body_found and not aliased:  # rotating parts alone: their comb lies about the body's Doppler
         offset_hz = combs.comb_offset_hz(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz)
@@ -463,6 +464,15 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                                                  min_period_s=1.0 / combs.MAX_CHOP_HZ))
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             lines=lines)
+    if comb is None and not aliased:
+        # a comb of single lines each under the band's threshold (tapered blades, lines 12-14 dB over the noise)
+        # lies beyond the band measured: searched over the span, its lines' extent stands for the band
+        comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=prf_hz / 2,
+                                min_hz=slowest_hz, lines=lines, folded=False)
+        if comb is not None:
+            sides_band_hz = combs.comb_extent_hz(lines, comb[0], half_width_hz=prf_hz / 2)
+            if halfwidth_mps is not None and band_hz > 0:  # the comb's reach, in m/s, for the blade reach test
+                halfwidth_mps *= max(1.0, sides_band_hz / band_hz)
     timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
                                                    prf_hz=prf_hz, noise_power=noise_power, min_hz=slowest_hz)
     if ambiguity is not None and comb is None:
@@ -539,7 +549,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(withheld("not_rotor", note), withheld("not_rotor", note))
     chopping_value = float(np.median(chopping_hz))
     parity = None if aliased else combs.odd_blades(micro, float(chopping_hz[0]), prf_hz=prf_hz,
-                                                   half_width_hz=count_band_hz)
+                                                   half_width_hz=sides_band_hz)
     doubled = parity if aliased or parity is not None else combs.flashes_doubled(
         micro, float(chopping_hz[0]), prf_hz=prf_hz, half_width_hz=count_band_hz)
     blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades, doubled=doubled, least=least_n)
