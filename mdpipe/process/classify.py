@@ -8,7 +8,8 @@ m/s. So one rule serves X band and 94 GHz:
   (``ROTOR_EVIDENCE``: the chopping withheld for that reason), or a micro-Doppler half-width above
   ``DRONE_SPREAD_MPS`` (an aliased band counts as at least half the unambiguous span);
 * bird: a wingbeat, which is only measured with a half-width between ``MIN_WING_SPREAD_MPS`` (or
-  ``MIN_FLYING_WING_SPREAD_MPS`` for a body flying at ``MIN_FLIGHT_SPEED_MPS`` or more) and
+  ``MIN_FLYING_WING_SPREAD_MPS`` for a body flying at ``MIN_FLIGHT_SPEED_MPS`` or more, or travelling
+  ``MIN_FLIGHT_DISTANCE_M`` in the dwell) and
   ``DRONE_SPREAD_MPS`` (about the body line, or the band's centre when no body line stands out; for an
   aliased band, the span's half-width, which the wings' spread exceeds);
 * none: nothing moving above the noise, or neither signature (a branch swaying in the wind repeats
@@ -17,7 +18,8 @@ m/s. So one rule serves X band and 94 GHz:
 
 DRONE_SPREAD_MPS = 10.0
 MIN_WING_SPREAD_MPS = 1.0
-MIN_FLIGHT_SPEED_MPS = 2.0         # a body this fast flies: no branch (its body line stays at 0 m/s)
+MIN_FLIGHT_SPEED_MPS = 2.0         # a body this fast flies: no branch (its body line stays at 0 m/s) ...
+MIN_FLIGHT_DISTANCE_M = 1.0        # ... or one that travels this far in the dwell (a branch sways by tenths of a m)
 MIN_FLYING_WING_SPREAD_MPS = 0.5   # ... and its wings may spread this little (beating across the line of sight)
 ROTOR_EVIDENCE = ("ambiguous_period", "blade_conflict")  # chopping statuses of blade flashes found, rotation withheld
 

@@ -14,7 +14,7 @@ import numpy as np
 from mdpipe.physics import rotor
 from mdpipe.physics.radar import range_rate_from_doppler_mps
 from mdpipe.process import combs, doppler, spectral
-from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_SPEED_MPS, MIN_FLYING_WING_SPREAD_MPS,
+from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS, MIN_FLYING_WING_SPREAD_MPS,
                                      MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import moving_average
 from mdpipe.process.flashes import flash_period, power_period
@@ -727,13 +727,14 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     return withheld("dwell_short" if dwell_s < 2.0 / MAX_WINGBEAT_HZ else "no_wingbeat", note)
 
 
-def wings(beat, halfwidth, body_velocity):
+def wings(beat, halfwidth, body_velocity, *, dwell_s):
     """A repeating micro-Doppler is a wingbeat only if its spread is that of wings (m/s, wavelength-free).
 
     Below ``MIN_WING_SPREAD_MPS`` it is swaying clutter (a branch, leaves); above ``DRONE_SPREAD_MPS``
-    faster than wing tips move. A target whose body flies at ``MIN_FLIGHT_SPEED_MPS`` or more is no branch:
-    its wings may spread down to ``MIN_FLYING_WING_SPREAD_MPS`` (a bird flying along the line of sight
-    beats its wings across it). An aliased band is at least the span's half-width: wings when that lies
+    faster than wing tips move. A target whose body flies at ``MIN_FLIGHT_SPEED_MPS`` or more, or travels
+    ``MIN_FLIGHT_DISTANCE_M`` in the ``dwell_s`` (a branch, anchored, moves at most twice its sway amplitude,
+    tenths of a metre), is no branch: its wings may spread down to ``MIN_FLYING_WING_SPREAD_MPS`` (a bird
+    flying along the line of sight beats its wings across it; a heron crossing at 1.2 m/s spread 0.94 m/s). An aliased band is at least the span's half-width: wings when that lies
     between the bounds (at 77-94 GHz a span of 1-4 m/s, which a bird's wing tips overrun; a span over
     ``DRONE_SPREAD_MPS`` already reads drone).
     """
@@ -742,14 +743,16 @@ def wings(beat, halfwidth, body_velocity):
     if halfwidth.value is None:
         return withheld("not_applicable", f"a micro-Doppler repeating at {beat.value:.3g} Hz, but no band above the "
                         "noise to tell wings from swaying clutter")
-    flying = body_velocity.value is not None and abs(body_velocity.value) >= MIN_FLIGHT_SPEED_MPS
+    speed_mps = None if body_velocity.value is None else abs(body_velocity.value)
+    flying = speed_mps is not None and (speed_mps >= MIN_FLIGHT_SPEED_MPS or speed_mps * dwell_s >= MIN_FLIGHT_DISTANCE_M)
     low = MIN_FLYING_WING_SPREAD_MPS if flying else MIN_WING_SPREAD_MPS
     if halfwidth.status in (OK, "aliased") and low <= halfwidth.value <= DRONE_SPREAD_MPS:
         return beat
     return withheld("not_applicable", f"a micro-Doppler repeating at {beat.value:.3g} Hz is no wingbeat: its "
                     f"half-width {halfwidth.value:.2g} m/s is outside the {low:g}-{DRONE_SPREAD_MPS:g} m/s of wings"
                     + ("" if flying else f" ({MIN_FLYING_WING_SPREAD_MPS:g} m/s for a body flying at "
-                                         f"{MIN_FLIGHT_SPEED_MPS:g} m/s or more)"))
+                                         f"{MIN_FLIGHT_SPEED_MPS:g} m/s or more, or {MIN_FLIGHT_DISTANCE_M:g} m "
+                                         "in the dwell)"))
 
 
 def _columns(primary, measured, derived=None):
@@ -797,7 +800,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         beat = withheld("not_applicable", "")  # blade flashes exclude a bird
     else:
         beat = wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
-                                   band_hz=2 * band.half_width_hz), band.halfwidth, body.velocity)
+                                   band_hz=2 * band.half_width_hz), band.halfwidth, body.velocity, dwell_s=dwell_s)
     rate_hz = turn.rate.value
     row = {
         **_columns("snr_db", snr_db),
