@@ -192,3 +192,42 @@ def test_bursts_of_slow_speckle_are_no_wingbeat(band_hz, seed):
     speckle *= np.sqrt(100 / np.mean(np.abs(speckle) ** 2))
     echo = speckle * (np.mod(t_s, 1.6) < 1.0) + (rng.normal(size=len(t_s)) + 1j * rng.normal(size=len(t_s))) / 2 ** 0.5
     assert wingbeat.wingbeat(echo, prf_hz=prf_hz, noise_power=1.0, band_hz=2 * (60.0 + band_hz)) is None
+
+
+GLIDE_PRF_HZ = 2000.0
+
+
+def glide_echo(*, flap_s, glide_s, dwell_s, body_fades=False, glides=True, seed=0):
+    """A body line at 0 Hz (power 1) and wings 10 dB under it, a sinusoidal FM of +-60 Hz beating 3 Hz, on while
+    flapping (``flap_s`` of every ``flap_s + glide_s``, or always when ``glides`` is False); noise 40 dB under the
+    body. ``body_fades``: the body line goes off with the wings (a target fading as a whole). Returns the echo and the
+    true flapping share."""
+    rng = np.random.default_rng(seed)
+    t_s = np.arange(int(dwell_s * GLIDE_PRF_HZ)) / GLIDE_PRF_HZ
+    flapping = np.mod(t_s, flap_s + glide_s) < flap_s if glides else np.ones(len(t_s), dtype=bool)
+    wings = np.sqrt(0.1) * np.exp(20j * np.sin(2 * np.pi * 3.0 * t_s)) * flapping
+    body = flapping.astype(float) if body_fades else np.ones(len(t_s))
+    noise = 0.01 * (rng.standard_normal(len(t_s)) + 1j * rng.standard_normal(len(t_s))) / np.sqrt(2)
+    return body + wings + noise, float(flapping.mean())
+
+
+@pytest.mark.parametrize("flap_s, glide_s, dwell_s, switches", [(1.0, 1.0, 4.0, 3), (0.7, 0.6, 3.9, 5)])
+def test_the_flapping_share_of_a_bird_gliding_between_bursts(flap_s, glide_s, dwell_s, switches):
+    """The wings go dark in the glides while the body line holds: the share of frames flapping is the true share
+    or more, by at most one 64 ms frame per switch within the dwell (a frame touching a burst is lit)."""
+    echo, share = glide_echo(flap_s=flap_s, glide_s=glide_s, dwell_s=dwell_s)
+    measured = wingbeat.flap_glide_share(echo, prf_hz=GLIDE_PRF_HZ, noise_power=1e-4)
+    assert share <= measured <= share + switches * wingbeat.FRAME_S / dwell_s
+
+
+def test_a_target_fading_as_a_whole_does_not_glide():
+    """The same bursts, the body line going off with them (a point crossing range bins, a target turning away):
+    no glide."""
+    echo, _ = glide_echo(flap_s=1.0, glide_s=1.0, dwell_s=4.0, body_fades=True)
+    assert wingbeat.flap_glide_share(echo, prf_hz=GLIDE_PRF_HZ, noise_power=1e-4) is None
+
+
+def test_wings_that_never_stop_do_not_glide():
+    """Wings beating through the whole dwell (and rotors, which never stop): no glide."""
+    echo, _ = glide_echo(flap_s=1.0, glide_s=1.0, dwell_s=4.0, glides=False)
+    assert wingbeat.flap_glide_share(echo, prf_hz=GLIDE_PRF_HZ, noise_power=1e-4) is None

@@ -20,7 +20,7 @@ from mdpipe.process.filters import moving_average
 from mdpipe.process.flashes import flash_period, power_period
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
-from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, wingbeat
+from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, flap_glide_share, wingbeat
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame
 BODY_FRAME_S = 0.032
@@ -58,6 +58,7 @@ FEATURE_GROUPS = {
     "blade_length_m": (),
     "body_velocity_mps": ("body_doppler_hz",),
     "wingbeat_freq_hz": ("wingbeat_period_s",),
+    "flapping_share": (),
 }
 VALUE_KEYS = tuple(key for primary, derived in FEATURE_GROUPS.items() for key in (primary, *derived))
 STATUS_KEYS = tuple(f"{key}_status" for key in VALUE_KEYS)
@@ -727,7 +728,16 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     return withheld("dwell_short" if dwell_s < 2.0 / MAX_WINGBEAT_HZ else "no_wingbeat", note)
 
 
-def wings(beat, halfwidth, body_velocity, *, dwell_s):
+def flapping(demodulated, *, prf_hz, noise_power):
+    """The share of the dwell a bird flaps, gliding between bursts (:func:`~mdpipe.process.wingbeat.flap_glide_share`),
+    or withheld as ``no_glide``."""
+    share = flap_glide_share(demodulated, prf_hz=prf_hz, noise_power=noise_power)
+    if share is None:
+        return withheld("no_glide", "")
+    return Measured(share)
+
+
+def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None):
     """A repeating micro-Doppler is a wingbeat only if its spread is that of wings (m/s, wavelength-free).
 
     Below ``MIN_WING_SPREAD_MPS`` it is swaying clutter (a branch, leaves); above ``DRONE_SPREAD_MPS``
@@ -736,19 +746,21 @@ def wings(beat, halfwidth, body_velocity, *, dwell_s):
     tenths of a metre), is no branch: its wings may spread down to ``MIN_FLYING_WING_SPREAD_MPS`` (a bird
     flying along the line of sight beats its wings across it; a heron crossing at 1.2 m/s spread 0.94 m/s). An aliased band is at least the span's half-width: wings when that lies
     between the bounds (at 77-94 GHz a span of 1-4 m/s, which a bird's wing tips overrun; a span over
-    ``DRONE_SPREAD_MPS`` already reads drone).
+    ``DRONE_SPREAD_MPS`` already reads drone). ``beat`` may be any measurement of wings (a flapping share):
+    ``described`` names it in the notes (by default: a micro-Doppler repeating at its value in Hz).
     """
     if beat.value is None:
         return beat
+    described = described or f"a micro-Doppler repeating at {beat.value:.3g} Hz"
     if halfwidth.value is None:
-        return withheld("not_applicable", f"a micro-Doppler repeating at {beat.value:.3g} Hz, but no band above the "
-                        "noise to tell wings from swaying clutter")
+        return withheld("not_applicable", f"{described}, but no band above the noise to tell wings from swaying "
+                        "clutter")
     speed_mps = None if body_velocity.value is None else abs(body_velocity.value)
     flying = speed_mps is not None and (speed_mps >= MIN_FLIGHT_SPEED_MPS or speed_mps * dwell_s >= MIN_FLIGHT_DISTANCE_M)
     low = MIN_FLYING_WING_SPREAD_MPS if flying else MIN_WING_SPREAD_MPS
     if halfwidth.status in (OK, "aliased") and low <= halfwidth.value <= DRONE_SPREAD_MPS:
         return beat
-    return withheld("not_applicable", f"a micro-Doppler repeating at {beat.value:.3g} Hz is no wingbeat: its "
+    return withheld("not_applicable", f"{described} is no wingbeat: its "
                     f"half-width {halfwidth.value:.2g} m/s is outside the {low:g}-{DRONE_SPREAD_MPS:g} m/s of wings"
                     + ("" if flying else f" ({MIN_FLYING_WING_SPREAD_MPS:g} m/s for a body flying at "
                                          f"{MIN_FLIGHT_SPEED_MPS:g} m/s or more, or {MIN_FLIGHT_DISTANCE_M:g} m "
@@ -797,10 +809,14 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                       wavelength_m=wavelength_m,
                                       noise_power=noise_power, params=params, n_blades=turn.n_blades)
     if turn.chopping.value is not None or turn.chopping.status in ROTOR_EVIDENCE:
-        beat = withheld("not_applicable", "")  # blade flashes exclude a bird
+        beat = flaps = withheld("not_applicable", "")  # blade flashes exclude a bird
     else:
         beat = wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
                                    band_hz=2 * band.half_width_hz), band.halfwidth, body.velocity, dwell_s=dwell_s)
+        flaps = flapping(body.demodulated, prf_hz=prf_hz, noise_power=noise_power)
+        flaps = wings(flaps, band.halfwidth, body.velocity, dwell_s=dwell_s,
+                      described=flaps.value is not None and f"a micro-Doppler in bursts over {flaps.value:.0%} of the "
+                      "dwell, gliding between them,")
     rate_hz = turn.rate.value
     row = {
         **_columns("snr_db", snr_db),
@@ -816,13 +832,15 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         **_columns("blade_length_m", length),
         **_columns("body_velocity_mps", body.velocity, {"body_doppler_hz": body_doppler_hz}),
         **_columns("wingbeat_freq_hz", beat, beat.value and {"wingbeat_period_s": 1.0 / beat.value}),
+        **_columns("flapping_share", flaps),
         "aliased": bool(band.aliased), "n_rotors": len(turn.rotor_rates_hz) or None,
         "n_blades": turn.n_blades, "n_blades_source": turn.n_blades_source,
     }
     window, hop = display_window_s(row, params)
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
     row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
-    notes = [m.note for m in (body.velocity, band.halfwidth, bandwidth, turn.chopping, turn.rate, tip, length, beat)
+    notes = [m.note for m in (body.velocity, band.halfwidth, bandwidth, turn.chopping, turn.rate, tip, length, beat,
+                              flaps)
              if m.note and (m.status != OK or m is body.velocity)]
     notes = list(dict.fromkeys(notes))  # one sentence once (blade length and its tip share theirs)
     notes.extend(display_adjustments(params, shown, prf_hz=prf_hz, dwell_s=dwell_s))

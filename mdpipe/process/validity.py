@@ -37,6 +37,7 @@ STATUS_CODES = {
     "body_only": "only the body line crosses the threshold: no micro-Doppler extent",
     "below_threshold": "nothing in the spectrum stands the threshold above its mean",
     "no_wingbeat": "no repeating wingbeat pattern in the dwell",
+    "no_glide": "no flapping bursts with glides between them (wings that beat throughout, or no wings)",
     "not_applicable": "not a quantity of this target (e.g. the wingbeat of an echo with blade flashes)",
 }
 

@@ -57,6 +57,9 @@ MIN_WING_ROWS = 3             # ... in this many Doppler rows at least (one or t
 BLURRED_FRAMES = 4            # a period under this many frames is read again in frames of a quarter of it ...
 BLUR_AGREEMENT = 0.15         # ... where it, or half of it, is found within this share (else withheld)
 BURST_AGREEMENT = 0.05        # a whole-record period is measured again within the bursts where found within this
+GLIDE_DROP_DB = 10.0          # a glide: the wing rows this far under their level while flapping ...
+BODY_STEADY_DB = 3.0          # ... while the body line holds within this of its own
+BODY_BINS = 2                 # the body line: the Doppler bins this close to 0 Hz (the body demodulated there)
 
 
 def _lit_level(noise_level):
@@ -275,3 +278,40 @@ def _gated_period(spec, *, noise_level, frame_rate):
     error = bartlett_error(overlap, pairs[found.peak_lag])
     needed = max(MIN_PERIODICITY if repeat_seen else MIN_SINGLE_PERIODICITY, PAIR_SIGMAS * error)
     return found if found.strength >= needed else None
+
+
+def flap_glide_share(demodulated, *, prf_hz, noise_power):
+    """The share of the dwell a bird flaps, where it glides between flapping bursts; None where it does not.
+
+    On a spectrogram of ``FRAME_S`` frames (an eighth of the dwell at most), the wing rows are those within
+    ``MAX_MICRO_DOPPLER_HZ`` lit in a quarter of the frames and off the body line (``BODY_BINS`` of 0 Hz),
+    ``MIN_WING_ROWS`` of them at least; :func:`flapping_frames` marks where they flap. A glide is frames not
+    flapping in ``MIN_GLIDE_SHARE`` of the dwell at least (and flapping in as much), in which the wing rows' median
+    power falls ``GLIDE_DROP_DB`` under its median while flapping and the body line's holds within
+    ``BODY_STEADY_DB`` of its own: a bird stops beating and glides on. Rotors never stop; a target fading as a whole
+    (a point crossing range bins) takes its body line down with it. This tells a bird whose bursts hold too few beats
+    for a wingbeat (a goose flapping 1.6 beats at a time, gliding 1.0 s); the rows hold 18-21 wing rows falling
+    28-34 dB, the body within 1.5 dB.
+    """
+    frame_s = min(FRAME_S, len(demodulated) / prf_hz / 8)
+    spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=HOP_S * frame_s / FRAME_S)
+    noise_level = noise_level_per_bin(noise_power, int(round(spec.window_s * prf_hz)))
+    inside = np.abs(spec.f_hz) <= MAX_MICRO_DOPPLER_HZ
+    power, f_hz = spec.power[inside], spec.f_hz[inside]
+    body = np.abs(f_hz) <= BODY_BINS * (spec.f_hz[1] - spec.f_hz[0])
+    wings = ~body & (np.percentile(power, SIGNAL_ROW_PERCENTILES[-1], axis=1) > _lit_level(noise_level))
+    if wings.sum() < MIN_WING_ROWS or not body.any():
+        return None
+    flapping = flapping_frames(power[wings], noise_level=noise_level, frame_rate=1.0 / spec.hop_s)
+    share = float(flapping.mean())
+    if not MIN_GLIDE_SHARE <= share <= 1 - MIN_GLIDE_SHARE:
+        return None
+    wing_power, body_power = power[wings].sum(axis=0), power[body].sum(axis=0)
+    tiny = np.finfo(float).tiny
+
+    def change_db(p):
+        return 10 * np.log10((np.median(p[flapping]) + tiny) / (np.median(p[~flapping]) + tiny))
+
+    if change_db(wing_power) < GLIDE_DROP_DB or abs(change_db(body_power)) > BODY_STEADY_DB:
+        return None
+    return share
