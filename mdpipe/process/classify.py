@@ -11,8 +11,9 @@ m/s. So one rule serves X band and 94 GHz:
   ``MIN_FLYING_WING_SPREAD_MPS`` for a body flying at ``MIN_FLIGHT_SPEED_MPS`` or more, or travelling
   ``MIN_FLIGHT_DISTANCE_M`` in the dwell) and ``DRONE_SPREAD_MPS`` (about the body line, or the band's
   centre when no body line stands out; for an aliased band, the span's half-width, which the wings' spread
-  exceeds); or, within the same bounds, wings that flap in bursts and glide between them (``flapping_share``:
-  too few beats a burst for a wingbeat, but rotors never stop);
+  exceeds); or, within the same bounds, wings lit in bursts and dark between them while the body line holds
+  (``flapping_share``: glides between bursts too short for a wingbeat, or the turns of a slow stroke; rotors never
+  stop);
 * none: nothing moving above the noise, or neither signature (a branch swaying in the wind repeats
   too, but its micro-Doppler stays below ``MIN_WING_SPREAD_MPS`` and it does not fly).
 """
@@ -39,6 +40,6 @@ def classify(row, *, detected):
     if row.get("wingbeat_freq_hz") is not None:  # only measured with a wing-like half-width (features.wings)
         return "bird", f"wingbeat {row['wingbeat_freq_hz']:.2f} Hz, half-width {spread or 0:.1f} m/s"
     if row.get("flapping_share") is not None:  # likewise
-        return "bird", (f"wings flapping in bursts over {row['flapping_share']:.0%} of the dwell and gliding between "
-                        f"them, half-width {spread or 0:.1f} m/s")
+        return "bird", (f"wing micro-Doppler in bursts over {row['flapping_share']:.0%} of the dwell, dark between them "
+                        f"while the body line holds, half-width {spread or 0:.1f} m/s")
     return "none", "moving, but neither blade flashes nor a wingbeat"

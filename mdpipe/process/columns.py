@@ -75,9 +75,9 @@ COLUMNS = (
     Column("wingbeat_freq_hz", "Hz", "wingbeat frequency: period of the autocorrelation of the detrended "
            "log-spectrogram", STATUS),
     Column("wingbeat_period_s", "s", "1 / `wingbeat_freq_hz`", STATUS),
-    Column("flapping_share", "-", "share of the dwell a bird flaps where it glides between flapping bursts: its wing "
-           "rows (off the body line, 10 dB over the noise in a quarter of the 64 ms frames) fall 10 dB or more in the "
-           "glides while the body line holds within 3 dB", STATUS),
+    Column("flapping_share", "-", "share of the dwell a bird's wings are lit where they go dark between bursts (glides, "
+           "or a slow stroke's turns): its wing rows (off the body line, 10 dB over the noise in a quarter of the 64 "
+           "ms frames) fall 10 dB or more between the bursts while the body line holds within 3 dB", STATUS),
     Column("aliased", "true/false", "the micro-Doppler fills the unambiguous span 1/Tp (band over 90 % of it or at both "
            "ends, or the brightest frames of a 64-chirp spectrogram fill it): bandwidths and blade length withheld",
            NO_TARGET),

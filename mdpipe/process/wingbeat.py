@@ -290,8 +290,9 @@ def flap_glide_share(demodulated, *, prf_hz, noise_power):
     power falls ``GLIDE_DROP_DB`` under its median while flapping and the body line's holds within
     ``BODY_STEADY_DB`` of its own: a bird stops beating and glides on. Rotors never stop; a target fading as a whole
     (a point crossing range bins) takes its body line down with it. This tells a bird whose bursts hold too few beats
-    for a wingbeat (a goose flapping 1.6 beats at a time, gliding 1.0 s); the rows hold 18-21 wing rows falling
-    28-34 dB, the body within 1.5 dB.
+    for a wingbeat (geese of the evaluation sweep flapping 1.6-2.3 beats at a time: 8-21 wing rows falling 26-34 dB,
+    the body within 1.5 dB). The wings of a slow stroke also go dark at its turns, where they move no faster than
+    the body (the paper's Table II birds beating 0.5 Hz: lit 83 % of the dwell): a bird too.
     """
     frame_s = min(FRAME_S, len(demodulated) / prf_hz / 8)
     spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=HOP_S * frame_s / FRAME_S)
