@@ -344,6 +344,7 @@ def fundamental_hz(lines, spacing_hz, *, half_width_hz):
     strong = divisors[np.nan_to_num(values, nan=-np.inf) >= FUNDAMENTAL_SHARE * reference]
     return float(spacing_hz / strong.max()) if len(strong) else float(spacing_hz)
 
+
 def comb_extent_hz(lines, spacing_hz, *, half_width_hz):
     """How far out (Hz) the comb at ``spacing_hz`` holds: its orders (``MIN_HARMONICS`` up, within
     ``half_width_hz``, at most ``MAX_FINE_HARMONICS``) where its t is largest, times the spacing."""

@@ -42,6 +42,7 @@ ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the 
 TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 MIN_BLADE_REACH_M = 0.005    # r cos(beta) below this is no blade: a comb that narrow is not a rotor
+MIN_WIDE_ORDERS = 8           # a comb found beyond the band measured holds this many orders a side at least
 BANDWIDTH_SEGMENT_S = 0.25   # the paper's rule on segments of this length (its value depends on the dwell)
 EDGE_BAND_EXCESS = 1.25      # the whole dwell's band beyond the flash edges by more than this is not the lines' Bessel
                              # tails and the rotors' spread of rates (<= 1.2; in the sweep 1.28-1.71 where tips folded)
@@ -445,7 +446,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     ``dense_half_width_hz`` (the band's dense part): the single lines beyond it, searched for combs, carry the
     rotors' mutual beats as much as a blade pattern (read there, N came out 3 and 5 for 2-blade rotors).
     Without a body line (``body_found`` False) the comb is first centred on the Doppler it lies about
-    (:func:`mdpipe.process.combs.comb_offset_hz`).
+    (:func:`mdpipe.process.combs.comb_offset_hz`). Where no comb holds within an unaliased band, one of single lines
+    each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the flashes' Doppler
+    sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
     """
     slowest_hz = max(combs.MIN_CHOP_HZ, 2.0 / dwell_s)  # two chopping periods in the dwell
     if slowest_hz >= combs.MAX_CHOP_HZ / 2:
@@ -466,14 +469,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             lines=lines)
     if comb is None and not aliased:
-        # a comb of single lines each under the band's threshold (tapered blades, lines 12-14 dB over the noise)
-        # lies beyond the band measured: searched over the span, its lines' extent stands for the band
-        comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=prf_hz / 2,
-                                min_hz=slowest_hz, lines=lines, folded=False)
-        if comb is not None:
-            sides_band_hz = combs.comb_extent_hz(lines, comb[0], half_width_hz=prf_hz / 2)
-            if halfwidth_mps is not None and band_hz > 0:  # the comb's reach, in m/s, for the blade reach test
-                halfwidth_mps *= max(1.0, sides_band_hz / band_hz)
+        comb, sides_band_hz = _comb_beyond_band(micro, lines, band_hz=band_hz, prf_hz=prf_hz, noise_power=noise_power,
+                                                min_hz=slowest_hz, sides_band_hz=sides_band_hz)
+        if comb is not None and halfwidth_mps is not None and band_hz > 0:  # its reach, for the blade reach test
+            halfwidth_mps *= max(1.0, sides_band_hz / band_hz)
     timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
                                                    prf_hz=prf_hz, noise_power=noise_power, min_hz=slowest_hz)
     if ambiguity is not None and comb is None:
@@ -583,6 +582,25 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     else:
         measured = Measured(rate)
     return Rotation(chopping, measured, rates, blades, source)
+
+
+def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz, sides_band_hz):
+    """A rotor comb of single lines each under the band's threshold (tapered blades: lines 12-14 dB over the noise
+    out to the 16th order, the band measured ending at the 3rd), searched over the span (unfolded); returns its
+    spacings and extent (Hz), else ``(None, sides_band_hz)``.
+
+    Taken only where its first line lies within the band measured (the rotor's strongest lines are its first)
+    and it holds ``MIN_WIDE_ORDERS`` orders a side: over the span a short dwell's few-line combs near the top
+    spacing pass the comb test on noise (a moving point read a 1700 Hz comb on 3 lines, its band 32 Hz wide).
+    """
+    comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=prf_hz / 2, min_hz=min_hz,
+                            max_hz=min(combs.MAX_CHOP_HZ, band_hz), lines=lines, folded=False)
+    if comb is None:
+        return None, sides_band_hz
+    extent_hz = combs.comb_extent_hz(lines, comb[0], half_width_hz=prf_hz / 2)
+    if extent_hz < MIN_WIDE_ORDERS * comb[0]:
+        return None, sides_band_hz
+    return comb, extent_hz
 
 
 def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None, power=lambda: None):
