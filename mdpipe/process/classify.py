@@ -40,6 +40,6 @@ def classify(row, *, detected):
     if row.get("wingbeat_freq_hz") is not None:  # only measured with a wing-like half-width (features.wings)
         return "bird", f"wingbeat {row['wingbeat_freq_hz']:.2f} Hz, half-width {spread or 0:.1f} m/s"
     if row.get("flapping_share") is not None:  # likewise
-        return "bird", (f"wing micro-Doppler in bursts over {row['flapping_share']:.0%} of the dwell, dark between them "
-                        f"while the body line holds, half-width {spread or 0:.1f} m/s")
+        return "bird", (f"wing micro-Doppler in bursts over {row['flapping_share']:.0%} of the dwell, dark between "
+                        f"them while the body line holds, half-width {spread or 0:.1f} m/s")
     return "none", "moving, but neither blade flashes nor a wingbeat"

@@ -14,8 +14,8 @@ import numpy as np
 from mdpipe.physics import rotor
 from mdpipe.physics.radar import range_rate_from_doppler_mps
 from mdpipe.process import combs, doppler, spectral
-from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS, MIN_FLYING_WING_SPREAD_MPS,
-                                     MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
+from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
+                                     MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import moving_average
 from mdpipe.process.flashes import flash_period, power_period
 from mdpipe.process.periodicity import autocorrelation, find_period
@@ -42,7 +42,7 @@ ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the 
 TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 MIN_BLADE_REACH_M = 0.005    # r cos(beta) below this is no blade: a comb that narrow is not a rotor
-MIN_WIDE_ORDERS = 8           # a comb found beyond the band measured holds this many orders a side at least
+MIN_WIDE_ORDERS = 8          # a comb found beyond the band measured holds this many orders a side at least
 BANDWIDTH_SEGMENT_S = 0.25   # the paper's rule on segments of this length (its value depends on the dwell)
 EDGE_BAND_EXCESS = 1.25      # the whole dwell's band beyond the flash edges by more than this is not the lines' Bessel
                              # tails and the rotors' spread of rates (<= 1.2; in the sweep 1.28-1.71 where tips folded)
@@ -762,10 +762,11 @@ def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None):
     faster than wing tips move. A target whose body flies at ``MIN_FLIGHT_SPEED_MPS`` or more, or travels
     ``MIN_FLIGHT_DISTANCE_M`` in the ``dwell_s`` (a branch, anchored, moves at most twice its sway amplitude,
     tenths of a metre), is no branch: its wings may spread down to ``MIN_FLYING_WING_SPREAD_MPS`` (a bird
-    flying along the line of sight beats its wings across it; a heron crossing at 1.2 m/s spread 0.94 m/s). An aliased band is at least the span's half-width: wings when that lies
-    between the bounds (at 77-94 GHz a span of 1-4 m/s, which a bird's wing tips overrun; a span over
-    ``DRONE_SPREAD_MPS`` already reads drone). ``beat`` may be any measurement of wings (a flapping share):
-    ``described`` names it in the notes (by default: a micro-Doppler repeating at its value in Hz).
+    flying along the line of sight beats its wings across it; a heron crossing at 1.2 m/s spread 0.94 m/s). An
+    aliased band is at least the span's half-width: wings when that lies between the bounds (at 77-94 GHz a span
+    of 1-4 m/s, which a bird's wing tips overrun; a span over ``DRONE_SPREAD_MPS`` already reads drone). ``beat``
+    may be any measurement of wings (a flapping share): ``described`` names it in the notes (by default: a
+    micro-Doppler repeating at its value in Hz).
     """
     if beat.value is None:
         return beat
@@ -774,7 +775,8 @@ def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None):
         return withheld("not_applicable", f"{described}, but no band above the noise to tell wings from swaying "
                         "clutter")
     speed_mps = None if body_velocity.value is None else abs(body_velocity.value)
-    flying = speed_mps is not None and (speed_mps >= MIN_FLIGHT_SPEED_MPS or speed_mps * dwell_s >= MIN_FLIGHT_DISTANCE_M)
+    flying = speed_mps is not None and (speed_mps >= MIN_FLIGHT_SPEED_MPS
+                                        or speed_mps * dwell_s >= MIN_FLIGHT_DISTANCE_M)
     low = MIN_FLYING_WING_SPREAD_MPS if flying else MIN_WING_SPREAD_MPS
     if halfwidth.status in (OK, "aliased") and low <= halfwidth.value <= DRONE_SPREAD_MPS:
         return beat
@@ -834,7 +836,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         flaps = flapping(body.demodulated, prf_hz=prf_hz, noise_power=noise_power)
         flaps = wings(flaps, band.halfwidth, body.velocity, dwell_s=dwell_s,
                       described=flaps.value is not None and f"a micro-Doppler in bursts over {flaps.value:.0%} of the "
-                      "dwell, gliding between them,")
+                      "dwell, dark between them,")
     rate_hz = turn.rate.value
     row = {
         **_columns("snr_db", snr_db),
