@@ -469,10 +469,12 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             lines=lines)
     if comb is None and not aliased:
-        comb, sides_band_hz = _comb_beyond_band(micro, lines, band_hz=band_hz, prf_hz=prf_hz, noise_power=noise_power,
-                                                min_hz=slowest_hz, sides_band_hz=sides_band_hz)
-        if comb is not None and halfwidth_mps is not None and band_hz > 0:  # its reach, for the blade reach test
-            halfwidth_mps *= max(1.0, sides_band_hz / band_hz)
+        comb, extent_hz = _comb_beyond_band(micro, lines, band_hz=band_hz, prf_hz=prf_hz, noise_power=noise_power,
+                                            min_hz=slowest_hz)
+        if comb is not None:
+            sides_band_hz = extent_hz
+            if halfwidth_mps is not None and band_hz > 0:  # its reach, for the blade reach test
+                halfwidth_mps *= max(1.0, extent_hz / band_hz)
     timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
                                                    prf_hz=prf_hz, noise_power=noise_power, min_hz=slowest_hz)
     if ambiguity is not None and comb is None:
@@ -584,10 +586,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     return Rotation(chopping, measured, rates, blades, source)
 
 
-def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz, sides_band_hz):
+def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz):
     """A rotor comb of single lines each under the band's threshold (tapered blades: lines 12-14 dB over the noise
     out to the 16th order, the band measured ending at the 3rd), searched over the span (unfolded); returns its
-    spacings and extent (Hz), else ``(None, sides_band_hz)``.
+    spacings and extent (Hz), else ``(None, None)``.
 
     Taken only where its first line lies within the band measured (the rotor's strongest lines are its first)
     and it holds ``MIN_WIDE_ORDERS`` orders a side: over the span a short dwell's few-line combs near the top
@@ -596,10 +598,10 @@ def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz, sid
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=prf_hz / 2, min_hz=min_hz,
                             max_hz=min(combs.MAX_CHOP_HZ, band_hz), lines=lines, folded=False)
     if comb is None:
-        return None, sides_band_hz
+        return None, None
     extent_hz = combs.comb_extent_hz(lines, comb[0], half_width_hz=prf_hz / 2)
     if extent_hz < MIN_WIDE_ORDERS * comb[0]:
-        return None, sides_band_hz
+        return None, None
     return comb, extent_hz
 
 

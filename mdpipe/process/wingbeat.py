@@ -72,11 +72,23 @@ def _frames_per_window(spec):
     return int(round(spec.window_s / spec.hop_s))
 
 
-def _lit_rows(spec, noise_level, row_percentile):
-    """The Doppler rows within ``MAX_MICRO_DOPPLER_HZ`` lit (:func:`_lit_level`) in ``100 - row_percentile`` %
-    of the frames."""
-    power = spec.power[np.abs(spec.f_hz) <= MAX_MICRO_DOPPLER_HZ]
+def _lit_rows(spec, noise_level, row_percentile, *, off_hz=-1.0):
+    """The Doppler rows within ``MAX_MICRO_DOPPLER_HZ`` (and beyond ``off_hz``) lit (:func:`_lit_level`) in
+    ``100 - row_percentile`` % of the frames."""
+    distance_hz = np.abs(spec.f_hz)
+    power = spec.power[(distance_hz <= MAX_MICRO_DOPPLER_HZ) & (distance_hz > off_hz)]
     return power[np.percentile(power, row_percentile, axis=1) > _lit_level(noise_level)]
+
+
+def _dwell_frame_s(demodulated, *, prf_hz):
+    """The spectrogram frame read first: ``FRAME_S``, or an eighth of the dwell where that is shorter."""
+    return min(FRAME_S, len(demodulated) / prf_hz / 8)
+
+
+def _frames(demodulated, *, prf_hz, noise_power, frame_s):
+    """The spectrogram of ``frame_s`` frames (hop a quarter of it) and its noise level per bin."""
+    spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=HOP_S * frame_s / FRAME_S)
+    return spec, noise_level_per_bin(noise_power, int(round(spec.window_s * prf_hz)))
 
 
 def _lag_products(rows):
@@ -185,7 +197,7 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
     it: a 14.6 Hz beat read 7.6 % off in 63 ms frames); T where it confirms T over two frames, finds none,
     or cannot be shorter; none where it finds another period.
     """
-    frame_s = min(FRAME_S, len(demodulated) / prf_hz / 8)
+    frame_s = _dwell_frame_s(demodulated, prf_hz=prf_hz)
     if band_hz:
         frame_s = min(frame_s, max(MIN_FRAME_S, BAND_BINS / band_hz))
     found, window_s = _looks(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
@@ -210,9 +222,8 @@ def _looks(demodulated, *, prf_hz, noise_power, frame_s):
     ``MIN_PERIODICITY`` is taken, else the first whose repeat the record cannot hold (two wingbeats in the
     dwell) with ``MIN_SINGLE_PERIODICITY``, else the period within flapping bursts (:func:`_gated_period`).
     """
-    spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=HOP_S * frame_s / FRAME_S)
+    spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
     frame_rate = 1.0 / spec.hop_s
-    noise_level = noise_level_per_bin(noise_power, int(round(spec.window_s * prf_hz)))
     single = None
     for row_percentile in SIGNAL_ROW_PERCENTILES:
         r = pattern_autocorrelation(spec, detrend_frames=int(2 * frame_rate / MIN_WINGBEAT_HZ),
@@ -294,20 +305,18 @@ def flap_glide_share(demodulated, *, prf_hz, noise_power):
     the body within 1.5 dB). The wings of a slow stroke also go dark at its turns, where they move no faster than
     the body (the paper's Table II birds beating 0.5 Hz: lit 83 % of the dwell): a bird too.
     """
-    frame_s = min(FRAME_S, len(demodulated) / prf_hz / 8)
-    spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=HOP_S * frame_s / FRAME_S)
-    noise_level = noise_level_per_bin(noise_power, int(round(spec.window_s * prf_hz)))
-    inside = np.abs(spec.f_hz) <= MAX_MICRO_DOPPLER_HZ
-    power, f_hz = spec.power[inside], spec.f_hz[inside]
-    body = np.abs(f_hz) <= BODY_BINS * (spec.f_hz[1] - spec.f_hz[0])
-    wings = ~body & (np.percentile(power, SIGNAL_ROW_PERCENTILES[-1], axis=1) > _lit_level(noise_level))
-    if wings.sum() < MIN_WING_ROWS or not body.any():
+    spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
+                                frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz))
+    body_hz = BODY_BINS * (spec.f_hz[1] - spec.f_hz[0])
+    wings = _lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1], off_hz=body_hz)
+    body = spec.power[np.abs(spec.f_hz) <= body_hz]
+    if len(wings) < MIN_WING_ROWS or len(body) == 0:
         return None
-    flapping = flapping_frames(power[wings], noise_level=noise_level, frame_rate=1.0 / spec.hop_s)
+    flapping = flapping_frames(wings, noise_level=noise_level, frame_rate=1.0 / spec.hop_s)
     share = float(flapping.mean())
     if not MIN_GLIDE_SHARE <= share <= 1 - MIN_GLIDE_SHARE:
         return None
-    wing_power, body_power = power[wings].sum(axis=0), power[body].sum(axis=0)
+    wing_power, body_power = wings.sum(axis=0), body.sum(axis=0)
     tiny = np.finfo(float).tiny
 
     def change_db(p):
