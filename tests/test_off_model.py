@@ -366,13 +366,13 @@ def test_a_3_blade_rotor_whose_power_repeats_once_per_chopping_period(tmp_path):
     assert row["rotation_rate_hz"] == pytest.approx(np.median(np.abs(rates)), rel=0.01)
 
 
-def test_a_turn_comb_whose_echo_repeats_each_half_turn_is_read_under_the_least_blade_count(tmp_path):
+def test_a_line_pattern_on_two_rotors_at_rates_apart_measures_the_blade_count(tmp_path):
     """A quadrotor of the default sweep (clutter left out) at X band, no blade count given: 2-blade rotors, one
-    blade 1.41x the other. The combs lie at the turn rates (127.7 and 132.6 Hz), every second line stronger,
-    and the echo repeats each half turn (256.8 Hz): old code called comb and period a whole multiple apart
-    and gave nothing. The echo's rate is the chopping frequency (within 1.5 % of twice the mean rate); the
-    rates rest on N = 2, the least count these allow (4 or 6 blades whose lines between stay under the noise
-    would give the same), and say so; each comb a rotor's rate within 0.3 %."""
+    blade 1.41x the other. The combs lie at the turn rates (127.7 and 132.6 Hz), every second line stronger on
+    both. Rotors whose phases cancel lines share one rate and one comb; a pattern on two combs at rates apart is
+    each rotor's own blades, one of two differing: N = 2 is measured (old code assumed it as the least count the
+    echo allows). The chopping frequency is within 1.5 % of twice the mean rate, each comb a rotor's rate within
+    0.3 %."""
     radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=66.645e-6, chirp_period_s=83.3063e-6,
                  sample_rate_hz=1920624.2047865558, n_samples=128, n_chirps=2048, n_channels=1)
     rates = (127.884, -127.182, 127.68, -132.801)
@@ -386,10 +386,30 @@ def test_a_turn_comb_whose_echo_repeats_each_half_turn_is_read_under_the_least_b
     row = sweep_row(tmp_path, radar, quad, moving_snr_db=19.2601, seed=1368699567)
     assert row["class"] == "drone" and row["chopping_freq_hz_status"] == "ok"
     assert row["chopping_freq_hz"] == pytest.approx(2 * np.mean(np.abs(rates)), rel=0.015)
-    assert row["n_blades"] == 2 and row["n_blades_source"] == "assumed"
-    assert row["rotation_rate_hz_status"] == "assumed_blades"
+    assert row["n_blades"] == 2 and row["n_blades_source"] == "measured"
+    assert row["rotation_rate_hz_status"] == "ok"
     for rate in row["rotor_rates_hz"]:
         assert min(abs(rate / abs(r) - 1) for r in rates) < 0.003
+
+
+def test_a_line_pattern_on_one_comb_of_rotors_unresolved_leaves_the_chopping_ambiguous(tmp_path):
+    """Four 4-blade rotors at 78-82 rev/s, one blade of each 1.3x the others, seen 0.1 s at 24 GHz: their combs
+    are not resolved (10 Hz resolution) and one comb at a turn rate, 78 Hz, stands out with every 4th line
+    stronger. One blade of 4 differing makes that pattern (the chopping 4 x 78 Hz); so do rotors at one rate whose
+    phases cancel the lines between (the chopping 78 Hz). Old code reported 78 Hz as the chopping frequency with
+    status ok, a quarter of the true 321 Hz; it is withheld as ambiguous."""
+    radar = K_BAND | {"n_chirps": 6000}
+    rates = [79.99, -78.2, 81.7, -80.9]
+    target = {"type": "multirotor", "name": "quad", "motion": {"position_m": [30.0, 0.0, 0.0]}, "body_rcs_m2": 0.0,
+              "elevation_deg": 48.9326, "rotors": {"count": 4, "arm_m": 0.186, "blades": 4,
+                                                  "blade_length_m": 0.0788816, "rev_per_s": rates,
+                                                  "phase_deg": [0.0, 100.0, 200.0, 300.0],
+                                                  "blade_gains": [1.3, 1, 1, 1]}}
+    path, _ = simulate(tmp_path, scene_mapping(radar, [target], noise={"snr_db": 10.0}, seed=6))
+    row = process_capture(path, ProcessParams()).rows[0]
+    assert row["class"] == "drone"
+    assert row["chopping_freq_hz_status"] == "ambiguous_period" and row["chopping_freq_hz"] is None
+    assert row["rotation_rate_hz_status"] == "ambiguous_period" and row["rotation_rate_hz"] is None
 
 
 def test_a_six_blade_comb_at_a_third_of_the_chopping_is_no_measured_turn(tmp_path):

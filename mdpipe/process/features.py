@@ -441,6 +441,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     given or measured, tells which; without it nothing is reported. A chopping frequency that rests
     on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade
     turning that fast could make (``r cos(beta) < MIN_BLADE_REACH_M``) is not a rotor.
+    A comb whose every k-th line stands out, read neither as a turn (blade count given or measured, see
+    :func:`_comb_blades`) nor by the echo's rate, is a turn of k blades (one differing, the chopping k times the
+    spacing) or rotors at one rate cancelling the lines between (the chopping the spacing): withheld as
+    ``ambiguous_period`` (four 4-blade rotors 78-82 rev/s apart, unresolved in 0.1 s, read 78 Hz for 321).
     Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines), else
     assumed (odd where the flashes alternate sides of the span); those tests read the lines within
     ``dense_half_width_hz`` (the band's dense part): the single lines beyond it, searched for combs, carry the
@@ -550,6 +554,12 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                 f"{halfwidth_mps:.2g} m/s wide is no rotor (blades turning that fast reach >= {fastest_mps:.2g} m/s)")
         return Rotation(withheld("not_rotor", note), withheld("not_rotor", note))
     chopping_value = float(np.median(chopping_hz))
+    if pattern and measured_n is None and least_n is None and not aliased:
+        note = (f"rotation not estimable: every {pattern}th line of the comb at {chopping_value:.4g} Hz stands out: "
+                f"one blade of {pattern} differing (the chopping {pattern * chopping_value:.4g} Hz) or rotors at one "
+                f"rate whose phases cancel the lines between (the chopping {chopping_value:.4g} Hz); rotors resolved "
+                "at rates apart, or the echo repeating each 1/N turn, would tell")
+        return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
     parity = None if aliased else combs.odd_blades(micro, float(chopping_hz[0]), prf_hz=prf_hz,
                                                    half_width_hz=sides_band_hz)
     doubled = parity if aliased or parity is not None else combs.flashes_doubled(
@@ -612,7 +622,8 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     A comb whose every N-th line stands out is a rotor's turn seen through one blade that differs:
     its chopping frequency is N times the spacing. A comb with weaker lines between its lines is the
     chopping comb of such a rotor. Either way N is measured. A pattern of every N-th line is confirmed by
-    N given, by the echo repeating each 1/N turn, or by the echo's power (``power()``, a
+    N given, by the same pattern on a further rotor's comb resolved at another rate
+    (:func:`_pattern_on_rotors_apart`), by the echo repeating each 1/N turn, or by the echo's power (``power()``, a
     :class:`~mdpipe.process.flashes.PowerPeriod` or None) flashing as N blades turning at the comb's rate
     do, when that is more than twice per spacing (N > 2: a comb of equal blades at the chopping frequency
     flashes once or twice per spacing, as two blades turning at it do; :func:`_power_flashes_as`). Folded
@@ -623,6 +634,8 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     if pattern and pattern == n_blades and not aliased:
         return spacing_hz * pattern, pattern, pattern
     if pattern and _power_flashes_as(pattern, spacing_hz, power()):
+        return spacing_hz * pattern, pattern, pattern
+    if pattern and not aliased and _pattern_on_rotors_apart(lines, spacing_hz, pattern, band_hz=band_hz):
         return spacing_hz * pattern, pattern, pattern
     if aliased:
         return spacing_hz, None, pattern
@@ -635,6 +648,22 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
         if at(turn / pattern) >= TAGGED_REPEAT and at(turn) > at(turn / pattern):
             return spacing_hz * pattern, pattern, pattern
     return spacing_hz, combs.blade_count_from_sublines(lines, float(spacing_hz[0]), half_width_hz=band_hz), pattern
+
+
+def _pattern_on_rotors_apart(lines, spacing_hz, pattern, *, band_hz):
+    """Whether the line pattern ``pattern`` of the first comb (spacing ``spacing_hz[0]``) shows again on a further
+    rotor's comb, read with the first comb's lines taken out: each rotor's own blades, one differing.
+
+    Rotors whose phases cancel some lines turn at one rate and share one comb; rotors at rates apart drift
+    through each other's phases, so a pattern on two of their combs is neither's cancellation. A comb too close
+    to the first to be read apart loses its lines with the first's and confirms nothing.
+    """
+    if len(spacing_hz) < 2:
+        return False
+    first = float(spacing_hz[0])
+    others = lines.without(first, np.arange(1, int(band_hz / first) + 1))
+    return any(combs.blade_count_from_line_pattern(others, float(s), half_width_hz=band_hz) == pattern
+               for s in spacing_hz[1:])
 
 
 def _power_flashes_as(pattern, spacing_hz, power):

@@ -17,8 +17,9 @@ STATUS_CODES = {
     "aliased": "the micro-Doppler wraps around the span 1/Tp: its extent is unknown",
     "dwell_short": "the dwell holds too few periods of what is measured",
     "no_flashes": "no periodic blade flashes (no line comb) in the echo",
-    "ambiguous_period": ("periods a whole multiple apart (two estimators, or flashes seen only in the power's "
-                         "period, which may be a multiple of theirs); the dwell does not tell which"),
+    "ambiguous_period": ("periods a whole multiple apart (two estimators, flashes seen only in the power's "
+                         "period, which may be a multiple of theirs, or a comb whose every N-th line stands out: "
+                         "a turn or a chopping comb); the dwell does not tell which"),
     "not_rotor": "the echo is periodic, but too narrow in Doppler for blades turning at that rate",
     "assumed_blades": "depends on the blade count, which the echo does not tell and the user did not give",
     "assumed_elevation": "depends on the rotor plane's elevation beta, which was not given: beta = 0 assumed",
