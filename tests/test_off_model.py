@@ -475,6 +475,28 @@ def test_a_comb_found_over_the_span_at_a_multiple_gives_way_to_its_fundamental(t
     assert row["chopping_freq_hz"] == pytest.approx(2 * np.median(np.abs(rates)), rel=0.01)
 
 
+def test_a_comb_beyond_the_band_at_a_multiple_of_the_rotors_lines_is_no_chopping(tmp_path):
+    """A quadrotor of a held-out sweep (seed 9131; clutter left out) at X band, no blade count given: 2-blade
+    rotors at 98-104 rev/s (chopping 196-208 Hz) with a slow rate wander, -8.6 dB per IF sample. Over the span a
+    comb at 593 Hz holds 12 orders; the rotors' lines at 2, 4 and 5 times 198 Hz lie between its lines as strong
+    as its own (the comb at 198 Hz has 0.96 of its contrast, no every-3rd line standing out), but smeared by the
+    rates' spread past the comb test. Old code reported 593 Hz (3x) as the chopping frequency with status ok;
+    a comb with lines between it that strong is a multiple of the echo's fundamental: the chopping is withheld."""
+    radar = dict(f_start_hz=9.8e9, f_stop_hz=10.05e9, ramp_up_s=22.1781e-6, chirp_period_s=27.7226e-6,
+                 sample_rate_hz=2885729.6190386014, n_samples=64, n_chirps=19918, n_channels=1)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 12.6544, "body_rcs_m2": 0.00532915,
+            "motion": {"position_m": [10.113, -0.110905, 8.08042], "velocity_mps": [0.0, 0.0, 0.0],
+                       "sway_amplitude_m": [0.184504, 0.1469, 0.0658505], "sway_period_s": 2.05551},
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [240.626, 14.8471, 26.2044, 115.541], "blade_rcs_m2": 0.00959321,
+                       "rate_wander_fraction": 0.00770001, "rate_wander_period_s": 1.51089,
+                       "tilt_deg": [4.84156, -2.27079, -4.06748, -3.76134], "blades": 2, "arm_m": 0.206031,
+                       "blade_length_m": 0.178902, "rev_per_s": [97.9871, -98.8995, 102.701, -103.98]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=-8.55802, seed=1144745204)
+    assert row["class"] == "drone"
+    assert row["chopping_freq_hz_status"] == "ambiguous_period" and row["chopping_freq_hz"] is None
+
+
 def test_a_moving_point_seen_briefly_has_no_comb_beyond_its_band(tmp_path):
     """A point flying 9.6 m/s at X band for 0.19 s, 3.5 dB per IF sample: its band is 32 Hz wide. Searched over
     the whole span without a guard, a 1700 Hz comb of 3 noise lines a side passed the comb test (a drone,

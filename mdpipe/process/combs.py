@@ -345,6 +345,31 @@ def fundamental_hz(lines, spacing_hz, *, half_width_hz):
     return float(spacing_hz / strong.max()) if len(strong) else float(spacing_hz)
 
 
+def lines_between(lines, spacing_hz, *, half_width_hz, min_hz):
+    """The largest m (2..MAX_BLADES, ``spacing_hz / m >= min_hz``) whose comb at ``spacing_hz / m`` holds lines
+    between those of the comb at ``spacing_hz`` as strong as its own, else 0: the comb is then m times the
+    echo's fundamental.
+
+    A comb at a multiple m f of a rotor's chopping frequency f has the rotor's lines between its own: f scores
+    ``FUNDAMENTAL_SHARE`` of m f's contrast or more, and no every-m-th line of it stands out
+    (:func:`blade_count_from_line_pattern`). A true comb's sub-multiple f / m has all but 1/m of its positions
+    empty (1/m of the contrast), or, one of m blades differing, weaker lines between: every m-th stands out.
+    Each comb is scored over the orders within ``half_width_hz`` where it holds (rotors a few per cent apart
+    smear a sub-multiple's higher orders first).
+    """
+    divisors = np.arange(2, MAX_BLADES + 1)
+    divisors = divisors[spacing_hz / divisors >= min_hz]
+    held = dict(half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS, min_orders=MIN_HARMONICS)
+    reference = comb_statistics(lines, spacing_hz, **held)[0][0]
+    if len(divisors) == 0 or not np.isfinite(reference):
+        return 0
+    values = comb_statistics(lines, spacing_hz / divisors, **held)[0]
+    for m in divisors[np.nan_to_num(values, nan=-np.inf) >= FUNDAMENTAL_SHARE * reference][::-1]:
+        if blade_count_from_line_pattern(lines, spacing_hz / m, half_width_hz=half_width_hz) != m:
+            return int(m)
+    return 0
+
+
 def comb_extent_hz(lines, spacing_hz, *, half_width_hz):
     """How far out (Hz) the comb at ``spacing_hz`` holds: its orders (``MIN_HARMONICS`` up, within
     ``half_width_hz``, at most ``MAX_FINE_HARMONICS``) where its t is largest, times the spacing."""

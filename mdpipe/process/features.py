@@ -604,6 +604,8 @@ def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz):
     Taken only where its first line lies within the band measured (the rotor's strongest lines are its first)
     and it holds ``MIN_WIDE_ORDERS`` orders a side: over the span a short dwell's few-line combs near the top
     spacing pass the comb test on noise (a moving point read a 1700 Hz comb on 3 lines, its band 32 Hz wide).
+    Nor where lines between its own stand as strong (:func:`mdpipe.process.combs.lines_between`): it is then a
+    multiple of rotors' chopping combs smeared by their rates' spread past the comb test (593 Hz read for 198).
     """
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=prf_hz / 2, min_hz=min_hz,
                             max_hz=min(combs.MAX_CHOP_HZ, band_hz), lines=lines, folded=False)
@@ -611,6 +613,8 @@ def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz):
         return None, None
     extent_hz = combs.comb_extent_hz(lines, comb[0], half_width_hz=prf_hz / 2)
     if extent_hz < MIN_WIDE_ORDERS * comb[0]:
+        return None, None
+    if combs.lines_between(lines, comb[0], half_width_hz=extent_hz, min_hz=min_hz):
         return None, None
     return comb, extent_hz
 
