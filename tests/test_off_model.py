@@ -497,6 +497,27 @@ def test_a_comb_beyond_the_band_at_a_multiple_of_the_rotors_lines_is_no_chopping
     assert row["chopping_freq_hz_status"] == "ambiguous_period" and row["chopping_freq_hz"] is None
 
 
+def test_a_folded_comb_that_divides_the_span_leaves_the_chopping_ambiguous(tmp_path):
+    """A quadrotor of a held-out sweep (seed 9131; clutter left out) at 94 GHz, no blade count given: four equal
+    2-blade rotors at 70.6 rev/s chop at 141.3 Hz, sampled at 6283 Hz: PRF / 44.5. Their folded chopping comb lies
+    on the grid PRF / 89 = 70.6 Hz, and their flashes, shorter than a chirp, are caught every other passage: the
+    flash times repeat at 70.7 Hz too, and the power repeats, not whole, at 14 ms. Old code reported 70.7 Hz as
+    the chopping frequency with status ok (half the truth); any multiple of a spacing that divides the span folds
+    onto it, so the chopping is withheld as ambiguous."""
+    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.1e9, ramp_up_s=127.322e-6, chirp_period_s=159.152e-6,
+                 sample_rate_hz=502662.54114764143, n_samples=64, n_chirps=2850, n_channels=2)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 44.0809, "body_rcs_m2": 0.00146636,
+            "motion": {"position_m": [1.98639, -0.204054, 6.07528], "velocity_mps": [0.0, 0.0, 0.0],
+                       "sway_amplitude_m": [0.0855037, 0.148682, 0.0826879], "sway_period_s": 2.00554},
+            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 16, "root_m": 0.01,
+                       "phase_deg": [191.665, 33.1191, 72.8351, 329.111], "blade_rcs_m2": 0.000727423,
+                       "tilt_deg": [4.87601, -4.28112, -2.34122, 1.59517], "blades": 2, "arm_m": 0.143929,
+                       "blade_length_m": 0.102085, "rev_per_s": [70.6161, -70.8237, 70.5957, -70.5802]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=12.5231, seed=529886218)
+    assert row["class"] == "drone"
+    assert row["chopping_freq_hz_status"] == "ambiguous_period" and row["chopping_freq_hz"] is None
+
+
 def test_a_moving_point_seen_briefly_has_no_comb_beyond_its_band(tmp_path):
     """A point flying 9.6 m/s at X band for 0.19 s, 3.5 dB per IF sample: its band is 32 Hz wide. Searched over
     the whole span without a guard, a 1700 Hz comb of 3 noise lines a side passed the comb test (a drone,

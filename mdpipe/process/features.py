@@ -445,6 +445,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     :func:`_comb_blades`) nor by the echo's rate, is a turn of k blades (one differing, the chopping k times the
     spacing) or rotors at one rate cancelling the lines between (the chopping the spacing): withheld as
     ``ambiguous_period`` (four 4-blade rotors 78-82 rev/s apart, unresolved in 0.1 s, read 78 Hz for 321).
+    An aliased comb spacing or flash rate that is the PRF over a whole number, which the power's period does not
+    settle, is withheld as ``ambiguous_period`` (:func:`_span_ambiguous`: its multiples fold onto it).
     Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines), else
     assumed (odd where the flashes alternate sides of the span); those tests read the lines within
     ``dense_half_width_hz`` (the band's dense part): the single lines beyond it, searched for combs, carry the
@@ -472,6 +474,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                                                  min_period_s=1.0 / combs.MAX_CHOP_HZ))
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             lines=lines)
+    if aliased and comb is not None and _span_ambiguous(float(comb[0]), prf_hz=prf_hz, dwell_s=dwell_s,
+                                                        power=power):
+        return _span_ambiguity("folded line comb", float(comb[0]), prf_hz=prf_hz)
     if comb is None and not aliased:
         comb, extent_hz = _comb_beyond_band(micro, lines, band_hz=band_hz, prf_hz=prf_hz, noise_power=noise_power,
                                             min_hz=slowest_hz)
@@ -518,6 +523,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # between stay under the noise (a 6-blade rotor's comb lay at 3 f_rot): k is the least count
             chopping_hz, least_n = chopping_hz * k, k
         elif aliased and not _whole_ratio(ratio):  # folded combs coincide by chance; flash times do not
+            if _span_ambiguous(timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power):
+                return _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz)
             chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
         else:
             note = (f"rotation not estimable: the line comb says {centre:.4g} Hz and the echo's "
@@ -532,6 +539,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
         chopping_hz = confirmed
     elif timed_hz is not None and aliased:
+        if _span_ambiguous(timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power):
+            return _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz)
         chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
     elif timed_hz is not None:  # the echo's period: one blade passage
         chopping_hz = np.array([timed_hz])
@@ -594,6 +603,36 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     else:
         measured = Measured(rate)
     return Rotation(chopping, measured, rates, blades, source)
+
+
+def _span_ambiguous(frequency_hz, *, prf_hz, dwell_s, power):
+    """Whether an aliased echo's comb spacing or flash rate ``frequency_hz`` is the PRF over a whole number M,
+    within what the dwell resolves (``1 / dwell_s``: M chirps a period, drifting less than a chirp over the dwell),
+    and the echo's power (``power()``, a :class:`~mdpipe.process.flashes.PowerPeriod` or None) does not repeat
+    whole at a whole multiple of it (the flash rate itself, no shorter repeat left).
+
+    A chopping comb at ``m f`` then folds onto the grid ``k f`` (every residue of ``k m`` mod M, for m prime to
+    M), and flashes shorter than a chirp every ``M / m`` chirps are caught every m-th, each M chirps: four equal
+    2-blade rotors chopping at 141.3 Hz sampled at 6283 Hz (PRF / 44.5) folded to a comb at 70.6 Hz (PRF / 89),
+    and their flash times repeated at 70.7 Hz; six rotors chopping at 161 Hz flashed every 432 chirps (27.6 Hz).
+    """
+    span_orders = prf_hz / frequency_hz
+    if abs(span_orders - round(span_orders)) * frequency_hz > 1.0 / dwell_s:
+        return False
+    found = power()
+    if found is None or not found.whole:
+        return True
+    ratio = 1.0 / found.period_s / frequency_hz
+    return not (round(ratio) >= 1 and _agrees(ratio, round(ratio)))
+
+
+def _span_ambiguity(what, frequency_hz, *, prf_hz):
+    """Rotation withheld as ``ambiguous_period``: ``what`` at ``frequency_hz`` divide the span
+    (:func:`_span_ambiguous`)."""
+    note = (f"rotation not estimable: the {what} at {frequency_hz:.4g} Hz, the PRF over {prf_hz / frequency_hz:.1f}: "
+            "a whole multiple of it folds onto it, its flashes shorter than a chirp caught at some passages only; "
+            "another PRF tells which")
+    return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
 
 
 def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz):
