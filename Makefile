@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch batch paper evaluate readme clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch batch paper evaluate evaluate-heldout readme clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -71,6 +71,10 @@ paper: $(MDPIPE)
 # processed and scored against what their physics makes estimable (a few minutes on 2 cores).
 evaluate: $(MDPIPE)
 	$(MDPIPE) evaluate configs/sweeps/default.yaml --out out/evaluate -j 2
+
+# The held-out drone sweep (another seed): what the estimators give on draws they were not tuned on
+evaluate-heldout: $(MDPIPE)
+	$(MDPIPE) evaluate configs/sweeps/heldout_drones.yaml --out out/evaluate_heldout -j 2
 
 # Every capture under IN (a folder, searched recursively), processed by JOBS worker processes into OUT
 # (make batch IN=captures OUT=results JOBS=4 ARGS="--blades 3"). Only captures whose input, options or
