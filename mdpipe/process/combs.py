@@ -336,13 +336,23 @@ def fundamental_hz(lines, spacing_hz, *, half_width_hz):
     Candidates down to two bins of ``lines``. A rotor's comb has nothing between its lines unless a
     blade differs (then the turn rate, m = N); a bird's wingbeat lines continue below 20 Hz.
     """
-    reference = comb_statistics(lines, spacing_hz, half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS)[0][0]
-    divisors = np.arange(2, int(spacing_hz / (2 * lines.resolution_hz)) + 1)
-    if len(divisors) == 0 or not np.isfinite(reference):
+    strong = _strong_divisors(lines, spacing_hz, np.arange(2, int(spacing_hz / (2 * lines.resolution_hz)) + 1),
+                              half_width_hz=half_width_hz)
+    if strong is None:
         return spacing_hz
-    values = comb_statistics(lines, spacing_hz / divisors, half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS)[0]
-    strong = divisors[np.nan_to_num(values, nan=-np.inf) >= FUNDAMENTAL_SHARE * reference]
     return float(spacing_hz / strong.max()) if len(strong) else float(spacing_hz)
+
+
+def _strong_divisors(lines, spacing_hz, divisors, *, half_width_hz, min_orders=None):
+    """The ``divisors`` m whose comb at ``spacing_hz / m`` reaches ``FUNDAMENTAL_SHARE`` of the contrast of the comb
+    at ``spacing_hz`` (:func:`comb_statistics`, ``min_orders`` passed on), in increasing order; None when there is
+    no divisor or no reference contrast."""
+    stats = dict(half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS, min_orders=min_orders)
+    reference = comb_statistics(lines, spacing_hz, **stats)[0][0]
+    if len(divisors) == 0 or not np.isfinite(reference):
+        return None
+    values = comb_statistics(lines, spacing_hz / divisors, **stats)[0]
+    return divisors[np.nan_to_num(values, nan=-np.inf) >= FUNDAMENTAL_SHARE * reference]
 
 
 def lines_between(lines, spacing_hz, *, half_width_hz, min_hz):
@@ -358,13 +368,9 @@ def lines_between(lines, spacing_hz, *, half_width_hz, min_hz):
     smear a sub-multiple's higher orders first).
     """
     divisors = np.arange(2, MAX_BLADES + 1)
-    divisors = divisors[spacing_hz / divisors >= min_hz]
-    held = dict(half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS, min_orders=MIN_HARMONICS)
-    reference = comb_statistics(lines, spacing_hz, **held)[0][0]
-    if len(divisors) == 0 or not np.isfinite(reference):
-        return 0
-    values = comb_statistics(lines, spacing_hz / divisors, **held)[0]
-    for m in divisors[np.nan_to_num(values, nan=-np.inf) >= FUNDAMENTAL_SHARE * reference][::-1]:
+    strong = _strong_divisors(lines, spacing_hz, divisors[spacing_hz / divisors >= min_hz],
+                              half_width_hz=half_width_hz, min_orders=MIN_HARMONICS)
+    for m in [] if strong is None else strong[::-1]:
         if blade_count_from_line_pattern(lines, spacing_hz / m, half_width_hz=half_width_hz) != m:
             return int(m)
     return 0

@@ -334,6 +334,11 @@ class Rotation:
     n_blades: int = None
     n_blades_source: str = None
 
+    @classmethod
+    def withheld(cls, status, note):
+        """Chopping and rate both withheld with ``status`` and ``note``."""
+        return cls(withheld(status, note), withheld(status, note))
+
 
 def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, min_hz):
     """Chopping (unaliased: the echo's period) or flash rate (aliased: flash timing) in Hz, None, or an ambiguity.
@@ -382,7 +387,7 @@ def _power_flashes(found, *, n_blades):
         why = "an odd blade count's power repeats once or twice per chopping period"
     note = (f"rotation not estimable: the echo's power repeats every {found.period_s * 1e3:.3g} ms like blade "
             f"flashes, too weak for the flash times or line combs that tell the chopping frequency; {why}")
-    return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+    return Rotation.withheld("ambiguous_period", note)
 
 
 def _folded_comb_by_power(found, comb_hz, *, n_blades):
@@ -446,7 +451,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     spacing) or rotors at one rate cancelling the lines between (the chopping the spacing): withheld as
     ``ambiguous_period`` (four 4-blade rotors 78-82 rev/s apart, unresolved in 0.1 s, read 78 Hz for 321).
     An aliased comb spacing or flash rate that is the PRF over a whole number, which the power's period does not
-    settle, is withheld as ``ambiguous_period`` (:func:`_span_ambiguous`: its multiples fold onto it).
+    settle, is withheld as ``ambiguous_period`` (:func:`_span_ambiguity`: its multiples fold onto it).
     Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines), else
     assumed (odd where the flashes alternate sides of the span); those tests read the lines within
     ``dense_half_width_hz`` (the band's dense part): the single lines beyond it, searched for combs, carry the
@@ -459,7 +464,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     slowest_hz = max(combs.MIN_CHOP_HZ, 2.0 / dwell_s)  # two chopping periods in the dwell
     if slowest_hz >= combs.MAX_CHOP_HZ / 2:
         note = f"rotation not estimable: dwell {dwell_s:.3g} s is too short for two chopping periods of any rotor"
-        return Rotation(withheld("dwell_short", note), withheld("dwell_short", note))
+        return Rotation.withheld("dwell_short", note)
     band_hz = prf_hz / 2 if aliased else half_width_hz
     count_band_hz = band_hz if aliased else min(dense_half_width_hz, band_hz)
     sides_band_hz = count_band_hz  # where the flashes' Doppler sides are read (blade parity)
@@ -474,9 +479,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                                                  min_period_s=1.0 / combs.MAX_CHOP_HZ))
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             lines=lines)
-    if aliased and comb is not None and _span_ambiguous(float(comb[0]), prf_hz=prf_hz, dwell_s=dwell_s,
-                                                        power=power):
-        return _span_ambiguity("folded line comb", float(comb[0]), prf_hz=prf_hz)
+    if aliased and comb is not None and (held := _span_ambiguity("folded line comb", float(comb[0]), prf_hz=prf_hz,
+                                                                   dwell_s=dwell_s, power=power)):
+        return held
     if comb is None and not aliased:
         comb, extent_hz = _comb_beyond_band(micro, lines, band_hz=band_hz, prf_hz=prf_hz, noise_power=noise_power,
                                             min_hz=slowest_hz)
@@ -488,7 +493,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                                                    prf_hz=prf_hz, noise_power=noise_power, min_hz=slowest_hz)
     if ambiguity is not None and comb is None:
         note = f"rotation not estimable: {ambiguity}"
-        return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+        return Rotation.withheld("ambiguous_period", note)
     chopping_hz, measured_n, pattern, least_n, flashes_only = None, None, None, None, False
     if comb is not None:
         chopping_hz, measured_n, pattern = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
@@ -504,7 +509,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                 note = (f"rotation not estimable: the flash times say {timed_hz:.4g} Hz and the line comb {centre:.4g} "
                         "Hz: an odd blade count flashes twice per chopping period, an even one with a blade differing "
                         "lines its turn rate; the blade count tells which (give --blades)")
-                return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+                return Rotation.withheld("ambiguous_period", note)
             if known % 2:
                 timed_hz, ratio = timed_hz / 2, ratio / 2
             else:
@@ -523,24 +528,24 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # between stay under the noise (a 6-blade rotor's comb lay at 3 f_rot): k is the least count
             chopping_hz, least_n = chopping_hz * k, k
         elif aliased and not _whole_ratio(ratio):  # folded combs coincide by chance; flash times do not
-            if _span_ambiguous(timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power):
-                return _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz)
+            if held := _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power):
+                return held
             chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
         else:
             note = (f"rotation not estimable: the line comb says {centre:.4g} Hz and the echo's "
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
-            return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+            return Rotation.withheld("ambiguous_period", note)
     elif chopping_hz is not None and aliased:
         confirmed = _folded_comb_by_power(power(), chopping_hz,
                                           n_blades=n_blades if n_blades is not None else measured_n)
         if confirmed is None:
             note = (f"rotation not estimable: a folded line comb at {float(np.median(chopping_hz)):.4g} Hz that "
                     "neither the flash times nor the power's period confirm (folded combs can coincide by chance)")
-            return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+            return Rotation.withheld("ambiguous_period", note)
         chopping_hz = confirmed
     elif timed_hz is not None and aliased:
-        if _span_ambiguous(timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power):
-            return _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz)
+        if held := _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power):
+            return held
         chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
     elif timed_hz is not None:  # the echo's period: one blade passage
         chopping_hz = np.array([timed_hz])
@@ -551,9 +556,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         if slowest_hz > combs.MIN_CHOP_HZ:
             note = (f"rotation not estimable: no periodic blade flashes above {slowest_hz:.3g} Hz (a dwell of "
                     f"{dwell_s:.3g} s holds two chopping periods only above it)")
-            return Rotation(withheld("dwell_short", note), withheld("dwell_short", note))
+            return Rotation.withheld("dwell_short", note)
         note = "rotation not estimable: no periodic blade flashes"
-        return Rotation(withheld("no_flashes", note), withheld("no_flashes", note))
+        return Rotation.withheld("no_flashes", note)
     fastest_mps = 2 * np.pi * float(chopping_hz.max()) * MIN_BLADE_REACH_M
     if not aliased and halfwidth_mps is not None and halfwidth_mps < fastest_mps:
         weak = _power_flashes(power(), n_blades=n_blades)
@@ -561,14 +566,14 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             return weak
         note = (f"rotation not estimable: a comb at {np.median(chopping_hz):.4g} Hz in a micro-Doppler only "
                 f"{halfwidth_mps:.2g} m/s wide is no rotor (blades turning that fast reach >= {fastest_mps:.2g} m/s)")
-        return Rotation(withheld("not_rotor", note), withheld("not_rotor", note))
+        return Rotation.withheld("not_rotor", note)
     chopping_value = float(np.median(chopping_hz))
     if pattern and measured_n is None and least_n is None and not aliased:
         note = (f"rotation not estimable: every {pattern}th line of the comb at {chopping_value:.4g} Hz stands out: "
                 f"one blade of {pattern} differing (the chopping {pattern * chopping_value:.4g} Hz) or rotors at one "
                 f"rate whose phases cancel the lines between (the chopping {chopping_value:.4g} Hz); rotors resolved "
                 "at rates apart, or the echo repeating each 1/N turn, would tell")
-        return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+        return Rotation.withheld("ambiguous_period", note)
     parity = None if aliased else combs.odd_blades(micro, float(chopping_hz[0]), prf_hz=prf_hz,
                                                    half_width_hz=sides_band_hz)
     doubled = parity if aliased or parity is not None else combs.flashes_doubled(
@@ -605,11 +610,12 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     return Rotation(chopping, measured, rates, blades, source)
 
 
-def _span_ambiguous(frequency_hz, *, prf_hz, dwell_s, power):
-    """Whether an aliased echo's comb spacing or flash rate ``frequency_hz`` is the PRF over a whole number M,
-    within what the dwell resolves (``1 / dwell_s``: M chirps a period, drifting less than a chirp over the dwell),
-    and the echo's power (``power()``, a :class:`~mdpipe.process.flashes.PowerPeriod` or None) does not repeat
-    whole at a whole multiple of it (the flash rate itself, no shorter repeat left).
+def _span_ambiguity(what, frequency_hz, *, prf_hz, dwell_s, power):
+    """Rotation withheld as ``ambiguous_period`` when an aliased echo's comb spacing or flash rate (``what`` at
+    ``frequency_hz``) is the PRF over a whole number M, within what the dwell resolves (``1 / dwell_s``: M chirps a
+    period, drifting less than a chirp over the dwell), and the echo's power (``power()``, a
+    :class:`~mdpipe.process.flashes.PowerPeriod` or None) does not repeat whole at a whole multiple of it (the
+    flash rate itself, no shorter repeat left); else None.
 
     A chopping comb at ``m f`` then folds onto the grid ``k f`` (every residue of ``k m`` mod M, for m prime to
     M), and flashes shorter than a chirp every ``M / m`` chirps are caught every m-th, each M chirps: four equal
@@ -618,21 +624,16 @@ def _span_ambiguous(frequency_hz, *, prf_hz, dwell_s, power):
     """
     span_orders = prf_hz / frequency_hz
     if abs(span_orders - round(span_orders)) * frequency_hz > 1.0 / dwell_s:
-        return False
+        return None
     found = power()
-    if found is None or not found.whole:
-        return True
-    ratio = 1.0 / found.period_s / frequency_hz
-    return not (round(ratio) >= 1 and _agrees(ratio, round(ratio)))
-
-
-def _span_ambiguity(what, frequency_hz, *, prf_hz):
-    """Rotation withheld as ``ambiguous_period``: ``what`` at ``frequency_hz`` divide the span
-    (:func:`_span_ambiguous`)."""
-    note = (f"rotation not estimable: the {what} at {frequency_hz:.4g} Hz, the PRF over {prf_hz / frequency_hz:.1f}: "
+    if found is not None and found.whole:
+        ratio = 1.0 / found.period_s / frequency_hz
+        if round(ratio) >= 1 and _agrees(ratio, round(ratio)):
+            return None
+    note = (f"rotation not estimable: the {what} at {frequency_hz:.4g} Hz, the PRF over {span_orders:.1f}: "
             "a whole multiple of it folds onto it, its flashes shorter than a chirp caught at some passages only; "
             "another PRF tells which")
-    return Rotation(withheld("ambiguous_period", note), withheld("ambiguous_period", note))
+    return Rotation.withheld("ambiguous_period", note)
 
 
 def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz):
