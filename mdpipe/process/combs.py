@@ -31,6 +31,7 @@ from mdpipe.process.filters import local_maxima, moving_average
 
 MIN_CHOP_HZ = 20.0           # the lowest comb spacing searched
 MIN_FUNDAMENTAL_HZ = 20.0    # a rotor turns faster than 20 rev/s; wings beat up to 20 Hz
+MAX_ROTOR_RATE_HZ = 500.0    # 30 000 rpm: a small racing drone's rotors at full throttle
 MAX_CHOP_HZ = 3000.0         # 6 blades at 500 rev/s
 COARSE_SEGMENT_S = 0.25      # Welch segments of the coarse search
 MAX_COARSE_HARMONICS = 12
@@ -45,7 +46,7 @@ ROTOR_SHARE = 0.35           # a further rotor's contrast against the strongest 
 ROTOR_SPREAD = 0.12          # rotors of one drone turn within +-12 % of each other
 MAX_ROTORS = 8
 SUBLINE_Z = 5.0              # imbalance sub-lines: z of their mean score over the half-way positions
-MAX_BLADES = 6
+MAX_BLADES = 6               # MAX_CHOP_HZ = MAX_BLADES x MAX_ROTOR_RATE_HZ
 PATTERN_MARGIN = 1.0         # every N-th line of a turn comb stronger by this (log(1 + SNR)): ~4 dB and more
 PATTERN_KNOTS = 5            # ... over a trend: a linear spline with at most this many knots a side
 MIN_PATTERN_DOF = 6          # ... fitted with this many degrees of freedom left at least
@@ -220,6 +221,12 @@ def _fundamental_comb(lines, comb, *, half_width_hz, min_hz):
     refined = _search(lines, spacings[chosen] - lines.resolution_hz, spacings[chosen] + lines.resolution_hz,
                       half_width_hz=half_width_hz)
     return refined if refined is not None and refined.t >= COMB_T else comb
+
+
+def max_chop_hz(n_blades=None):
+    """The fastest chopping frequency a rotor of ``n_blades`` blades (None: any count) makes, ``N`` times
+    ``MAX_ROTOR_RATE_HZ``: a comb spaced wider than that is none of its chopping or turn combs."""
+    return MAX_CHOP_HZ if n_blades is None else min(MAX_CHOP_HZ, n_blades * MAX_ROTOR_RATE_HZ)
 
 
 def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ, max_hz=MAX_CHOP_HZ, lines=None,

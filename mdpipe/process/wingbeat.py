@@ -59,7 +59,8 @@ BLUR_AGREEMENT = 0.15         # ... where it, or half of it, is found within thi
 BURST_AGREEMENT = 0.05        # a whole-record period is measured again within the bursts where found within this
 GLIDE_DROP_DB = 10.0          # a glide: the wing rows this far under their level while flapping ...
 BODY_STEADY_DB = 3.0          # ... while the body line holds within this of its own
-BODY_BINS = 2                 # the body line: the Doppler bins this close to 0 Hz (the body demodulated there)
+BODY_BINS = 1.5               # the body line: the Doppler bins this close to 0 Hz (the body demodulated there; a
+                              # Hann window puts it 6 dB down 1 bin off, 15 dB down 1.5 bins off)
 
 
 def _lit_level(noise_level):
@@ -78,6 +79,12 @@ def _lit_rows(spec, noise_level, row_percentile, *, off_hz=-1.0):
     distance_hz = np.abs(spec.f_hz)
     power = spec.power[(distance_hz <= MAX_MICRO_DOPPLER_HZ) & (distance_hz > off_hz)]
     return power[np.percentile(power, row_percentile, axis=1) > _lit_level(noise_level)]
+
+
+def _body_hz(spec):
+    """How far from 0 Hz the body line (demodulated there) reaches in ``spec``: ``BODY_BINS`` Doppler bins, the
+    window's main lobe."""
+    return BODY_BINS * (spec.f_hz[1] - spec.f_hz[0])
 
 
 def _dwell_frame_s(demodulated, *, prf_hz):
@@ -200,7 +207,7 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
     frame_s = _dwell_frame_s(demodulated, prf_hz=prf_hz)
     if band_hz:
         frame_s = min(frame_s, max(MIN_FRAME_S, BAND_BINS / band_hz))
-    found, window_s = _looks(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
+    found, window_s = _looks(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s, need_wings=True)
     if found is None or found.period_s >= BLURRED_FRAMES * window_s:
         return found
     again, shorter_s = _looks(demodulated, prf_hz=prf_hz, noise_power=noise_power,
@@ -215,14 +222,21 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
     return None
 
 
-def _looks(demodulated, *, prf_hz, noise_power, frame_s):
+def _looks(demodulated, *, prf_hz, noise_power, frame_s, need_wings=False):
     """The wingbeat period in a spectrogram of ``frame_s`` frames (hop a quarter of it), and the frame used.
+
+    With ``need_wings``, none unless ``MIN_WING_ROWS`` rows off the body line (:func:`_body_hz`) are lit in a
+    quarter of the frames: a modulation of the body line alone (its main lobe's three rows) is no wing, and
+    the line's beat with another (a residual line at 0 Hz, a second body) repeats it as evenly.
 
     Each row set of ``SIGNAL_ROW_PERCENTILES`` gives a period; the first seen to repeat with
     ``MIN_PERIODICITY`` is taken, else the first whose repeat the record cannot hold (two wingbeats in the
     dwell) with ``MIN_SINGLE_PERIODICITY``, else the period within flapping bursts (:func:`_gated_period`).
     """
     spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
+    if need_wings and len(_lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1],
+                                     off_hz=_body_hz(spec))) < MIN_WING_ROWS:
+        return None, spec.window_s
     frame_rate = 1.0 / spec.hop_s
     single = None
     for row_percentile in SIGNAL_ROW_PERCENTILES:
@@ -307,7 +321,7 @@ def flap_glide_share(demodulated, *, prf_hz, noise_power):
     """
     spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
                                 frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz))
-    body_hz = BODY_BINS * (spec.f_hz[1] - spec.f_hz[0])
+    body_hz = _body_hz(spec)
     wings = _lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1], off_hz=body_hz)
     body = spec.power[np.abs(spec.f_hz) <= body_hz]
     if len(wings) < MIN_WING_ROWS or len(body) == 0:
