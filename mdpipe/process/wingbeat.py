@@ -59,8 +59,9 @@ BLUR_AGREEMENT = 0.15         # ... where it, or half of it, is found within thi
 BURST_AGREEMENT = 0.05        # a whole-record period is measured again within the bursts where found within this
 GLIDE_DROP_DB = 10.0          # a glide: the wing rows this far under their level while flapping ...
 BODY_STEADY_DB = 3.0          # ... while the body line holds within this of its own
-BODY_BINS = 1.5               # the body line: the Doppler bins this close to 0 Hz (the body demodulated there; a
-                              # Hann window puts it 6 dB down 1 bin off, 15 dB down 1.5 bins off)
+BODY_BINS = 2                 # the body line: the Doppler bins this close to 0 Hz (the body demodulated there),
+                              # the Hann window's main lobe to its nulls: wing rows dark in a glide lie beyond
+BODY_LOBE_BINS = 1.5          # ... the rows it lights by itself: 6 dB down 1 bin off, 15 dB down 1.5 bins off
 
 
 def _lit_level(noise_level):
@@ -81,10 +82,9 @@ def _lit_rows(spec, noise_level, row_percentile, *, off_hz=-1.0):
     return power[np.percentile(power, row_percentile, axis=1) > _lit_level(noise_level)]
 
 
-def _body_hz(spec):
-    """How far from 0 Hz the body line (demodulated there) reaches in ``spec``: ``BODY_BINS`` Doppler bins, the
-    window's main lobe."""
-    return BODY_BINS * (spec.f_hz[1] - spec.f_hz[0])
+def _body_hz(spec, bins=BODY_BINS):
+    """How far from 0 Hz the body line (demodulated there) reaches in ``spec``: ``bins`` Doppler bins."""
+    return bins * (spec.f_hz[1] - spec.f_hz[0])
 
 
 def _dwell_frame_s(demodulated, *, prf_hz):
@@ -225,7 +225,7 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
 def _looks(demodulated, *, prf_hz, noise_power, frame_s, need_wings=False):
     """The wingbeat period in a spectrogram of ``frame_s`` frames (hop a quarter of it), and the frame used.
 
-    With ``need_wings``, none unless ``MIN_WING_ROWS`` rows off the body line (:func:`_body_hz`) are lit in a
+    With ``need_wings``, none unless ``MIN_WING_ROWS`` rows off the body line (``BODY_LOBE_BINS``) are lit in a
     quarter of the frames: a modulation of the body line alone (its main lobe's three rows) is no wing, and
     the line's beat with another (a residual line at 0 Hz, a second body) repeats it as evenly.
 
@@ -235,7 +235,7 @@ def _looks(demodulated, *, prf_hz, noise_power, frame_s, need_wings=False):
     """
     spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
     if need_wings and len(_lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1],
-                                     off_hz=_body_hz(spec))) < MIN_WING_ROWS:
+                                     off_hz=_body_hz(spec, BODY_LOBE_BINS))) < MIN_WING_ROWS:
         return None, spec.window_s
     frame_rate = 1.0 / spec.hop_s
     single = None
