@@ -458,7 +458,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     rotors' mutual beats as much as a blade pattern (read there, N came out 3 and 5 for 2-blade rotors).
     With N given, no comb is searched beyond N times the fastest rotor rate
     (:func:`mdpipe.process.combs.max_chop_hz`): six rotors' smeared lines seen 0.12 s read a 3-line comb at 1623 Hz
-    for 173, with 2 blades 812 rev/s. Without a body line (``body_found`` False) the comb is first centred on the Doppler it lies about
+    for 173, with 2 blades 812 rev/s. Without a body line (``body_found`` False) the comb is first centred on the
+    Doppler it lies about
     (:func:`mdpipe.process.combs.comb_offset_hz`). Where no comb holds within an unaliased band, one of single lines
     each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the flashes' Doppler
     sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
