@@ -860,9 +860,9 @@ def test_a_body_line_alone_modulated_is_no_wingbeat(tmp_path):
 def test_a_comb_too_narrow_for_rotors_gives_no_wingbeat(tmp_path):
     """A quadrotor of a held-out sweep (seed 9131; clutter left out) at 77 GHz seen near face-on (88 deg), tapered
     blades, no blade count given: its chopping comb at 218 Hz fails the blade-reach test (the tips' lines under the
-    band's threshold: the band under-measured), and its rotors' 5 Hz beat (218.8 - 213.7 Hz) repeats the spectrogram. Old
-    code read that beat as a wingbeat and called the drone a bird. A comb spaced wider than any wingbeat repeats
-    the echo faster than wings beat: no wingbeat is read."""
+    band's threshold: the band under-measured), and its rotors' 5 Hz beat (218.8 - 213.7 Hz) repeats the
+    spectrogram. Old code read that beat as a wingbeat and called the drone a bird. A comb spaced wider than any
+    wingbeat repeats the echo faster than wings beat: no wingbeat is read."""
     radar = dict(f_start_hz=76.5e9, f_stop_hz=76.75e9, ramp_up_s=2.00149e-05, chirp_period_s=2.50186e-05,
                  sample_rate_hz=6395235.555910846, n_samples=128, n_chirps=31927, n_channels=2)
     quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 88.1453, "body_rcs_m2": 0.0293357,

@@ -32,7 +32,8 @@ from mdpipe.process.filters import local_maxima, moving_average
 MIN_CHOP_HZ = 20.0           # the lowest comb spacing searched
 MIN_FUNDAMENTAL_HZ = 20.0    # a rotor turns faster than 20 rev/s; wings beat up to 20 Hz
 MAX_ROTOR_RATE_HZ = 500.0    # 30 000 rpm: a small racing drone's rotors at full throttle
-MAX_CHOP_HZ = 3000.0         # 6 blades at 500 rev/s
+MAX_BLADES = 6
+MAX_CHOP_HZ = MAX_BLADES * MAX_ROTOR_RATE_HZ  # 3000 Hz: 6 blades at 500 rev/s
 COARSE_SEGMENT_S = 0.25      # Welch segments of the coarse search
 MAX_COARSE_HARMONICS = 12
 MIN_HARMONICS = 3            # a comb needs this many lines each side within the band
@@ -46,7 +47,6 @@ ROTOR_SHARE = 0.35           # a further rotor's contrast against the strongest 
 ROTOR_SPREAD = 0.12          # rotors of one drone turn within +-12 % of each other
 MAX_ROTORS = 8
 SUBLINE_Z = 5.0              # imbalance sub-lines: z of their mean score over the half-way positions
-MAX_BLADES = 6               # MAX_CHOP_HZ = MAX_BLADES x MAX_ROTOR_RATE_HZ
 PATTERN_MARGIN = 1.0         # every N-th line of a turn comb stronger by this (log(1 + SNR)): ~4 dB and more
 PATTERN_KNOTS = 5            # ... over a trend: a linear spline with at most this many knots a side
 MIN_PATTERN_DOF = 6          # ... fitted with this many degrees of freedom left at least
