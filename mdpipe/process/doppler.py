@@ -1,4 +1,4 @@
-"""Slow-time Doppler analysis: spectrogram, dwell power spectrum, body-Doppler track.
+"""Slow-time Doppler analysis: spectrogram, dwell power spectrum, the strongest line of each frame.
 
 Frequencies follow the paper's sign (approaching positive) and are centred (``-PRF/2 .. PRF/2``).
 Arrays are (frequency, time) for spectrograms, as ``scipy.signal.ShortTimeFFT`` returns them.
@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
-from mdpipe.process.filters import parabolic_offset, running_median
+from mdpipe.process.filters import parabolic_offset
 
 
 STFT_BLOCK_FRAMES = 4096
@@ -97,27 +97,16 @@ def power_spectrum(signal, *, prf_hz):
     return PowerSpectrum(power=np.abs(spectrum) ** 2, f_hz=np.fft.fftshift(np.fft.fftfreq(n, 1.0 / prf_hz)))
 
 
-def peak_track_hz(spec, *, n_chirps, prf_hz, smooth_frames=5):
-    """Doppler of the strongest line of each frame of ``spec`` (the body), at each of ``n_chirps`` chirps.
-
-    Per frame the peak of the spectrum is refined by a parabola through its neighbours; the track is
-    unwrapped across the ends of the span (a body whose Doppler drifts past +-PRF/2 goes on beyond it, not
-    back from the other end: :func:`fold_hz` folds it back), median-filtered over ``smooth_frames``
-    frames and interpolated to the chirps (``n_chirps`` None: one value per frame).
-
-    Returns
-    -------
-    ndarray (n_chirps,) or (n_frames,), Hz
-    """
+def frame_peaks_hz(spec, *, prf_hz):
+    """Doppler of the strongest line of each frame of ``spec`` (Hz), refined by a parabola through its neighbours
+    and unwrapped across the ends of the span (a body whose Doppler drifts past +-PRF/2 goes on beyond it, not
+    back from the other end: :func:`fold_hz` folds it back)."""
     log_power = np.log(spec.power + np.finfo(float).tiny)
     peak = np.argmax(spec.power, axis=0)
     inner = np.clip(peak, 1, len(spec.f_hz) - 2)
     left, mid, right = (log_power[inner + d, np.arange(len(peak))] for d in (-1, 0, 1))
     f_peak = spec.f_hz[inner] + parabolic_offset(left, mid, right) * (spec.f_hz[1] - spec.f_hz[0])
-    f_peak = running_median(np.unwrap(f_peak, period=prf_hz), min(smooth_frames, len(f_peak)) | 1)
-    if n_chirps is None:
-        return f_peak
-    return np.interp(np.arange(n_chirps) / prf_hz, spec.t_s, f_peak)
+    return np.unwrap(f_peak, period=prf_hz)
 
 
 def fold_hz(doppler_hz, *, prf_hz):
