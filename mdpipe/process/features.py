@@ -27,7 +27,7 @@ BODY_FRAME_S = 0.032
 BODY_STEADY_SHARE = 0.5      # frames whose strongest line lies on the smoothed body track
 MAX_SPEED_MPS = 25.0         # birds and small drones fly slower: a faster alias of the body Doppler is not taken
 BODY_TRACK_FRAMES = 9        # running median of the body track (rotor lines win single frames)
-BODY_STEADY_S = 0.2          # ... and, for the mean range rate, over this time: a rotor line winning up to 0.1 s
+BODY_RATE_MEDIAN_S = 0.2     # ... and, for the mean range rate, over this time: a rotor line winning up to 0.1 s
 STATIC_LINE_S = 0.25         # the line at 0 Hz (clutter, and what its removal leaves) followed over this time ...
 STATIC_CLEAR_NULLS = 4.0     # ... where the body line lies this many of its smoothing's first nulls from 0 Hz
 MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
@@ -143,7 +143,7 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     frame peaks over ``BODY_TRACK_FRAMES`` frames, so a frame where a rotor line outshines the body
     does not move it; if fewer than ``BODY_STEADY_SHARE`` of the frames peak on the track, the body
     is not steady enough to demodulate. The velocity is the mean range rate over the dwell: the mean of the
-    frame peaks' running median over ``BODY_STEADY_S`` (a rotor line 1.7 m/s off that won 6 frames running took
+    frame peaks' running median over ``BODY_RATE_MEDIAN_S`` (a rotor line 1.7 m/s off that won 6 frames running took
     the 9-frame track, and its mean read -0.46 m/s for -0.26; a body's monotone track passes such a median
     unchanged, a sway's turns are clipped symmetrically), unfolded with the range ``track`` where the Doppler
     alone is ambiguous (:func:`dealias_velocity`). The echo is demodulated along the 9-frame track (which follows a
@@ -164,7 +164,11 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
                                          f"the micro-Doppler ({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the "
                                          "next line)"), signal)
     peaks = doppler.frame_peaks_hz(spec, prf_hz=prf_hz)
-    frame_track = running_median(peaks, min(BODY_TRACK_FRAMES, len(peaks)) | 1)
+
+    def peaks_median(frames):  # the peaks' running median over an odd number of frames, at most the dwell's
+        return running_median(peaks, min(frames, len(peaks)) | 1)
+
+    frame_track = peaks_median(BODY_TRACK_FRAMES)
     bin_hz = spec.f_hz[1] - spec.f_hz[0]
     on_track = float(np.mean(np.abs(doppler.fold_hz(spec.f_hz[peak] - frame_track, prf_hz=prf_hz)) <= 2 * bin_hz))
     if on_track < BODY_STEADY_SHARE:
@@ -172,8 +176,8 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
                                          f"the body track in only {on_track:.0%} of the frames"), signal)
     times_s = np.arange(len(signal)) / prf_hz
     doppler_track = np.interp(times_s, spec.t_s, frame_track)
-    steady = running_median(peaks, min(int(round(BODY_STEADY_S / spec.hop_s)), len(peaks)) | 1)
-    velocity = float(range_rate_from_doppler_mps(float(np.mean(np.interp(times_s, spec.t_s, steady))),
+    rate_track = peaks_median(int(round(BODY_RATE_MEDIAN_S / spec.hop_s)))
+    velocity = float(range_rate_from_doppler_mps(float(np.mean(np.interp(times_s, spec.t_s, rate_track))),
                                                  wavelength_m=wavelength_m))
     return BodyMotion(doppler_track, dealias_velocity(velocity, span_mps=wavelength_m * prf_hz / 2, track=track),
                       doppler.demodulate(signal - static_line(signal, doppler_track, prf_hz=prf_hz), doppler_track,
@@ -467,10 +471,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     With N given, no comb is searched beyond N times the fastest rotor rate
     (:func:`mdpipe.process.combs.max_chop_hz`): six rotors' smeared lines seen 0.12 s read a 3-line comb at 1623 Hz
     for 173, with 2 blades 812 rev/s. Without a body line (``body_found`` False) the comb is first centred on the
-    Doppler it lies about
-    (:func:`mdpipe.process.combs.comb_offset_hz`). Where no comb holds within an unaliased band, one of single lines
-    each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the flashes' Doppler
-    sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
+    Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`). Where no comb holds within an unaliased band,
+    one of single lines each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the
+    flashes' Doppler sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
     """
     slowest_hz = max(combs.MIN_CHOP_HZ, 2.0 / dwell_s)  # two chopping periods in the dwell
     if slowest_hz >= combs.MAX_CHOP_HZ / 2:
