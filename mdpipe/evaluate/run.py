@@ -58,6 +58,7 @@ def score_scene(draw, scene, truth, rows, *, process):
                                           tolerance_m=max(3 * radar["range_bin_m"], 1.0))
     records = [{"target": "subject", "kind": physics.kind, "true_range_m": track and track["range_m"]["mean"],
                 "range_m": match and match["range_m"], "micro_line_snr_db": physics.micro_line_snr_db,
+                "micro_bin_share": physics.micro_bin_share,
                 "body_line_snr_db": physics.body_line_snr_db, **scoring.score_row(physics, match)}]
     ghost = scoring.Physics(kind="ghost", expected_class="none", dwell_s=base.dwell_s, prf_hz=base.prf_hz)
     for i, row in enumerate(extra):

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mdpipe.evaluate import range_share
 from mdpipe.physics import rotor
 from mdpipe.simulate.targets import module_of, target_echo
 from mdpipe.simulate.targets.bird import wing_speed_max_mps
@@ -44,7 +45,10 @@ class Physics:
     ``micro_line_snr_db`` is the SNR of one spectral line of the moving parts (blades, wings) after the
     range FFT (gain ``n_samples / 3``: a real IF's positive bin through a Hann window), coherent RX
     combining (``n_channels``) and the dwell (``n_chirps``), the moving parts' power shared among the
-    lines that fill their Doppler extent (see :func:`line_count`); ``imbalance_line_db``, the strongest line
+    lines that fill their Doppler extent (see :func:`line_count`) and scaled by ``micro_bin_share``, the share of
+    their power the range FFT puts in the body's range bin, where the processing reads them (blade tips whose
+    Doppler shifts their beat by bins, or flashes shorter than the ramp, spread over the range bins:
+    :mod:`mdpipe.evaluate.range_share`); ``imbalance_line_db``, the strongest line
     that unequal blades add at a turn-rate order between the chopping lines, against those
     (:func:`imbalance_line_db`; -inf for equal blades). ``body_line_snr_db`` is the body
     line's SNR in the frames a track follows it with: a line sweeping B Hz over the dwell T stays in one
@@ -58,6 +62,7 @@ class Physics:
     dwell_s: float
     prf_hz: float
     micro_line_snr_db: float = float("-inf")
+    micro_bin_share: float = 1.0
     body_line_snr_db: float = float("-inf")
     rotor_rates_hz: tuple = ()
     rotor_elevations_deg: tuple = ()
@@ -349,9 +354,13 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
         return Physics(**base)
     noise_v2 = noise_sigma_v ** 2 if noise_sigma_v > 0 else np.finfo(float).tiny
     gain = radar.n_samples / 3.0 * radar.n_channels * n_chirps
-    micro = echo_power_v2(_without_body(target), f0_hz=radar.f_start_hz, dwell_s=dwell_s, seed=scene.seed,
-                          index=index) \
-        if kind in ("multirotor", "bird") else 0.0
+    micro, share = 0.0, 1.0
+    if kind in ("multirotor", "bird"):
+        bodiless = _without_body(target)
+        micro = echo_power_v2(bodiless, f0_hz=radar.f_start_hz, dwell_s=dwell_s, seed=scene.seed, index=index)
+        share = range_share.in_bin_share(target, bodiless, radar=radar, seed=scene.seed, index=index,
+                                         duration_s=dwell_s)
+    base.update(micro_bin_share=share)
     body_rcs = body_rcs_m2(target)
     body_power = 0.5 * body_rcs * float(np.mean(np.asarray(expected["track"]["range_m"]) ** -4.0))
     kept = kept_share(expected["track"]["t_s"], expected["track"]["range_m"], wavelength_m=wavelength_m)
@@ -371,7 +380,7 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
                                                    elevation_deg=np.array(expected["rotor_elevations_deg"]))))
         distinct = len(np.unique(np.round(np.array(rates) * dwell_s)))  # rotors resolved in the dwell spectrum
         lines = distinct * line_count(2 * tip_hz + sweep_hz, rotors.blades * np.mean(rates), prf_hz=prf_hz)
-        return Physics(**base, micro_line_snr_db=_db(micro / noise_v2 * gain / lines), rotor_rates_hz=rates,
+        return Physics(**base, micro_line_snr_db=_db(share * micro / noise_v2 * gain / lines), rotor_rates_hz=rates,
                        rotor_elevations_deg=tuple(expected["rotor_elevations_deg"]),
                        n_blades=rotors.blades, blade_length_m=rotors.blade_length_m,
                        elevation_deg=target.elevation_deg, blades_given=process.get("n_blades") is not None,
@@ -381,7 +390,7 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
         spread_hz = 4.0 * wing_speed_max_mps(target) / wavelength_m
         lines = line_count(spread_hz + sweep_hz, target.wingbeat_hz, prf_hz=prf_hz)
         flap_run_s = dwell_s if target.flap_glide is None else min(dwell_s, target.flap_glide.flap_s)
-        return Physics(**base, micro_line_snr_db=_db(micro / noise_v2 * gain / lines),
+        return Physics(**base, micro_line_snr_db=_db(share * micro / noise_v2 * gain / lines),
                        wingbeat_hz=target.wingbeat_hz, flap_run_s=flap_run_s)
     return Physics(**base)
 
