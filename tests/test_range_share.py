@@ -41,7 +41,7 @@ def test_a_turning_point_keeps_the_windows_mean_response_over_its_doppler_shifts
     theta = np.linspace(0.0, 2 * np.pi, 4096, endpoint=False)
     expected = np.mean(range_response(reach_bins * np.sin(theta), window="hann", n_samples=128, zero_pad=1) ** 2)
     share = in_bin_share(_without_body(target), radar=radar, seed=1, index=0,
-                         duration_s=radar.duration_s(CHIRPS), chirps=CHIRPS)
+                         n_chirps=CHIRPS, chirps=CHIRPS)
     assert share == pytest.approx(expected, rel=0.02)
 
 

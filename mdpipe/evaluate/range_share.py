@@ -10,7 +10,7 @@ lay in the body's bin).
 
 The share is measured, not modelled: the target's echo without its body is evaluated at every IF sample of
 chirps drawn at random over the dwell (seeded; regular chirps could strobe with the flashes), each chirp's
-real IF is range-transformed as the processing does (Hann window, the DFT at a fractional bin) at the body's
+real IF is range-transformed as the processing does (its range window, the DFT at a fractional bin) at the body's
 bin, and the power there is divided by what it would be were all of it in that bin (the window's coherent
 gain). The body's bin is its range's, moved by its own Doppler shift: ``2 (dR/dt) / lambda * N / fs`` bins
 (an approaching body's beat is lower).
@@ -18,29 +18,33 @@ gain). The body's bin is its range's, moved by its own Doppler shift: ``2 (dR/dt
 
 import numpy as np
 
+from mdpipe.params import ProcessParams
 from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS, beat_frequency_hz
+from mdpipe.process.ranging import range_window
 from mdpipe.simulate.targets import module_of, target_echo
 
 SHARE_CHIRPS = 256
+WINDOW = ProcessParams().range_window  # the processing's default, which the evaluation runs with
 
 
 def range_dft(if_real, bins):
-    """Hann-windowed DFT of real IF chirps (M, N) at fractional ``bins`` (M,): complex (M,)."""
+    """DFT of real IF chirps (M, N) through the processing's range window at fractional ``bins`` (M,): complex
+    (M,), one bin per chirp."""
     n_samples = if_real.shape[-1]
     kernel = np.exp(-2j * np.pi * np.asarray(bins)[:, None] * np.arange(n_samples) / n_samples)
-    return np.sum(kernel * if_real * np.hanning(n_samples), axis=-1)
+    return np.sum(kernel * if_real * range_window(WINDOW, n_samples), axis=-1)
 
 
 def body_bins(range_m, *, radar, f0_hz):
     """Each chirp's body bin (fractional) from its body's range at the IF samples (M, N): the range's bin plus
     the Doppler shift's, ``2 (dR/dt) / lambda * N / fs``."""
     tau = radar.sample_times_s
-    rate_mps = (range_m[:, -1] - range_m[:, 0]) / (tau[-1] - tau[0]) if len(tau) > 1 else np.zeros(len(range_m))
+    rate_mps = (range_m[:, -1] - range_m[:, 0]) / (tau[-1] - tau[0])  # a scene's chirp holds 2 samples or more
     doppler_bins = 2.0 * rate_mps * f0_hz / SPEED_OF_LIGHT_MPS * radar.sampled_duration_s
     return np.mean(range_m, axis=-1) / radar.range_bin_m + doppler_bins
 
 
-def in_bin_share(moving, *, radar, seed, index, duration_s, chirps=SHARE_CHIRPS):
+def in_bin_share(moving, *, radar, seed, index, n_chirps, chirps=SHARE_CHIRPS):
     """Share (0 to ~1) of target ``moving``'s echo power that the range DFT puts in its body's bin.
 
     Parameters
@@ -48,12 +52,11 @@ def in_bin_share(moving, *, radar, seed, index, duration_s, chirps=SHARE_CHIRPS)
     moving : scene target
         A target without its body scatterers (its moving parts only; its body's track stays).
     radar : :class:`mdpipe.params.RadarParams`
-    seed, index, duration_s :
-        The scene's seed, the target's place in the scene and the capture's length: they fix its random
+    seed, index, n_chirps :
+        The scene's seed, the target's place in the scene and the capture's chirps: they fix its random
         draws (rate wander, rough wings), as in the simulator.
     """
-    realization = module_of(moving).realize(moving, seed=seed, index=index, duration_s=duration_s)
-    n_chirps = max(1, int(round(duration_s / radar.chirp_period_s)))
+    realization = module_of(moving).realize(moving, seed=seed, index=index, duration_s=radar.duration_s(n_chirps))
     picks = np.sort(np.random.default_rng(0).choice(n_chirps, size=min(chirps, n_chirps), replace=False))
     tau = radar.sample_times_s
     f0_hz = radar.f_start_hz
@@ -61,6 +64,6 @@ def in_bin_share(moving, *, radar, seed, index, duration_s, chirps=SHARE_CHIRPS)
     centre_m = np.mean(echo.range_m, axis=-1)  # each chirp's beat at its own range (migration included)
     tone = np.exp(-2j * np.pi * beat_frequency_hz(centre_m, slope_hz_per_s=radar.slope_hz_per_s)[:, None] * tau)
     in_bin = np.abs(range_dft(np.real(echo.signal * tone), body_bins(echo.range_m, radar=radar, f0_hz=f0_hz))) ** 2
-    all_in_bin = np.hanning(radar.n_samples).sum() ** 2 / 4 * np.abs(echo.signal) ** 2  # a tone: (sum w)^2 |g|^2 / 4
+    all_in_bin = range_window(WINDOW, radar.n_samples).sum() ** 2 / 4 * np.abs(echo.signal) ** 2  # (sum w)^2 |g|^2 / 4
     total = float(np.mean(all_in_bin))
     return float(np.mean(in_bin)) / total if total > 0 else 0.0

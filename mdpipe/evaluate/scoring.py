@@ -358,7 +358,7 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
     if kind in ("multirotor", "bird"):
         bodiless = _without_body(target)
         micro = echo_power_v2(bodiless, f0_hz=radar.f_start_hz, dwell_s=dwell_s, seed=scene.seed, index=index)
-        share = range_share.in_bin_share(bodiless, radar=radar, seed=scene.seed, index=index, duration_s=dwell_s)
+        share = range_share.in_bin_share(bodiless, radar=radar, seed=scene.seed, index=index, n_chirps=n_chirps)
     base.update(micro_bin_share=share)
     body_rcs = body_rcs_m2(target)
     body_power = 0.5 * body_rcs * float(np.mean(np.asarray(expected["track"]["range_m"]) ** -4.0))
