@@ -857,12 +857,13 @@ def test_a_body_line_alone_modulated_is_no_wingbeat(tmp_path):
     assert row["wingbeat_freq_hz"] is None and row["wingbeat_freq_hz_status"] != "ok"
 
 
-def test_a_comb_too_narrow_for_rotors_gives_no_wingbeat(tmp_path):
+def test_a_rotor_seen_face_on_is_a_drone_not_a_bird(tmp_path):
     """A quadrotor of a held-out sweep (seed 9131; clutter left out) at 77 GHz seen near face-on (88 deg), tapered
-    blades, no blade count given: its chopping comb at 218 Hz fails the blade-reach test (the tips' lines under the
-    band's threshold: the band under-measured), and its rotors' 5 Hz beat (218.8 - 213.7 Hz) repeats the
-    spectrogram. Old code read that beat as a wingbeat and called the drone a bird. A comb spaced wider than any
-    wingbeat repeats the echo faster than wings beat: no wingbeat is read."""
+    blades, neither blade count nor elevation given: its tips spread over +-3.8 m/s only (r cos(beta) ~ 4-8 mm, the
+    discs tilted 3-4 deg), and its rotors' 5 Hz beat (218.8 - 213.7 Hz) repeats the spectrogram. Older code read
+    that beat as a wingbeat (a bird), then, testing the comb against a least blade reach r cos(beta) of 5 mm with
+    beta unknown (no floor: cos(beta) -> 0 face-on), withheld the chopping as ``not_rotor`` and called the drone
+    ``none``. The comb at one rotor's chopping frequency (213.7-218.8 Hz) is read; a drone, no wingbeat."""
     radar = dict(f_start_hz=76.5e9, f_stop_hz=76.75e9, ramp_up_s=2.00149e-05, chirp_period_s=2.50186e-05,
                  sample_rate_hz=6395235.555910846, n_samples=128, n_chirps=31927, n_channels=2)
     quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 88.1453, "body_rcs_m2": 0.0293357,
@@ -874,9 +875,58 @@ def test_a_comb_too_narrow_for_rotors_gives_no_wingbeat(tmp_path):
                        "tilt_deg": [2.62234, -3.78631, 2.75339, 2.69402], "blades": 2, "arm_m": 0.310298,
                        "blade_length_m": 0.122804, "rev_per_s": [106.837, -108.693, 106.93, -109.405]}}
     row = sweep_row(tmp_path, radar, quad, moving_snr_db=4.50858, seed=2028843669)
-    assert row["chopping_freq_hz_status"] == "not_rotor"
-    assert row["class"] != "bird"
+    assert row["chopping_freq_hz_status"] == "ok" and 213.7 <= row["chopping_freq_hz"] <= 218.8
+    assert row["class"] == "drone"
     assert row["wingbeat_freq_hz"] is None and row["wingbeat_freq_hz_status"] == "not_applicable"
+
+
+def test_least_tip_speed_has_no_floor_without_the_elevation():
+    """The least tip speed a comb at 200 Hz allows: 2 blades of 5 mm at 100 rev/s seen edge-on (0 deg, the disc
+    tilted 5 deg) reach 2 pi 100 0.005 cos(5 deg) = 3.1296 m/s; six blades (N not given) a sixth of that; a disc
+    seen face-on (86 deg + 5) nothing, and without the elevation beta is unknown: no floor."""
+    from mdpipe.process.features import least_tip_speed_mps
+    assert least_tip_speed_mps(200.0, n_blades=2, elevation_deg=0.0) == pytest.approx(3.12964, rel=1e-5)
+    assert least_tip_speed_mps(200.0, n_blades=None, elevation_deg=-0.0) == pytest.approx(3.12964 / 3, rel=1e-5)
+    assert least_tip_speed_mps(200.0, n_blades=2, elevation_deg=86.0) == 0.0
+    assert least_tip_speed_mps(200.0, n_blades=2, elevation_deg=None) == 0.0
+
+
+def test_a_comb_its_echo_power_contradicts_is_withheld(tmp_path):
+    """A hexarotor of the default sweep (scene 0082, clutter left out) at 77 GHz, edge-on (0.14 deg given): six
+    rotors 53.6-54.7 rev/s (2 %), 27 cm blades, one of each pair 1.56x brighter. Their smeared high orders let a
+    comb at 1202 Hz (22 turns) outscore the chopping comb; the echo's power repeats at the chopping period (9.2
+    ms). No rotor's power repeats 11 times slower than its comb: the rotation is withheld, the class still drone.
+    (A blade reach bound of 5 mm with N = 1 had caught it; it also threw out rotors seen near face-on.)"""
+    radar = dict(f_start_hz=76.5e9, f_stop_hz=76.6e9, ramp_up_s=8.37232e-05, chirp_period_s=0.000104654,
+                 sample_rate_hz=1528847.441664915, n_samples=128, n_chirps=8459, n_channels=4)
+    hexa = {"name": "hexarotor", "type": "multirotor", "elevation_deg": 0.139699, "body_rcs_m2": 0.0431569,
+            "motion": {"position_m": [26.6252, -0.788257, 13.7243], "velocity_mps": [-1.70105, 9.14777, 0.0]},
+            "rotors": {"count": 6, "blade_profile": "points", "points_per_blade": 16, "root_m": 0.01,
+                       "phase_deg": [28.7325, 203.369, 51.716, 161.185, 138.574, 353.986], "blade_rcs_m2": 0.00931054,
+                       "rate_wander_fraction": 0.00129095, "rate_wander_period_s": 1.88221,
+                       "tilt_deg": [-1.85587, 1.58837, -3.94273, -2.36448, -0.899172, -4.49915], "blades": 2,
+                       "arm_m": 0.570704, "blade_length_m": 0.272104, "blade_gains": [1.0, 1.55782],
+                       "rev_per_s": [54.6703, -54.1177, 53.6475, -54.2943, 54.6261, -54.4195]}}
+    row = sweep_row(tmp_path, radar, hexa, moving_snr_db=-5.61193, seed=1844432172, elevation_deg=0.139699)
+    assert row["class"] == "drone"
+    assert row["chopping_freq_hz"] is None and row["chopping_freq_hz_status"] == "ambiguous_period"
+    assert row["rotation_rate_hz"] is None
+
+
+def test_comb_and_power_rates_a_rotor_allows():
+    """The power of a rotor chopping at f repeats at f (N even), 2 f (N odd), f / N (one blade differing); of one
+    whose comb lines its turn rate, at up to 2N times it; 10 % apart for rotors apart in rate."""
+    from mdpipe.process.features import _comb_against_power
+    from mdpipe.process.flashes import PowerPeriod
+
+    def held(comb_hz, power_hz):
+        return _comb_against_power(PowerPeriod(1.0 / power_hz, True), np.array(comb_hz))
+    assert held([1202.5], 108.6).chopping.status == "ambiguous_period"  # 1/11: no blade count that high
+    assert held([492.8, 478.8], 325.7).chopping.status == "ambiguous_period"  # 0.67: neither k nor 1/k
+    for comb_hz, power_hz in (([125.2], 133.1), ([200.0], 100.0), ([200.0], 400.0), ([100.0], 300.0),
+                              ([100.0], 1200.0), ([600.0], 100.0)):
+        assert held(comb_hz, power_hz) is None
+    assert _comb_against_power(None, np.array([1202.5])) is None
 
 
 def test_flash_times_of_rotors_far_apart_in_rate_give_no_period(tmp_path):

@@ -42,7 +42,11 @@ TILT_TOLERANCE = 0.03        # blade length ok only where that tilt moves cos(be
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
 TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
-MIN_BLADE_REACH_M = 0.005    # r cos(beta) below this is no blade: a comb that narrow is not a rotor
+POWER_COMB_TOLERANCE = 0.1   # an unaliased comb and its echo's power rate are a whole ratio apart within 10 %: rotors
+                             # apart in rate (chopping at 123-134 Hz, the power repeated with the fastest, 133.1 Hz,
+                             # the comb was their median, 125.2 Hz)
+MIN_BLADE_M = 0.005          # a blade this short, at the elevation given (its disc tilted ROTOR_TILT_DEG towards
+                             # face-on), reaches the least r cos(beta) of any rotor: a comb narrower is not one
 MIN_WIDE_ORDERS = 8          # a comb found beyond the band measured holds this many orders a side at least
 BANDWIDTH_SEGMENT_S = 0.25   # the paper's rule on segments of this length (its value depends on the dwell)
 EDGE_BAND_EXCESS = 1.25      # the whole dwell's band beyond the flash edges by more than this is not the lines' Bessel
@@ -443,7 +447,7 @@ def _chopping_from_flash_rate(flash_rate_hz, *, n_blades):
 
 
 def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, halfwidth_mps,
-             dense_half_width_hz, body_found=True):
+             dense_half_width_hz, body_found=True, elevation_deg=None):
     """Rotation of the rotors from their line combs and from the echo's period (or flash times when aliased).
 
     * The combs (:mod:`mdpipe.process.combs`) give each resolvable rotor's chopping frequency ``N f_i``.
@@ -457,7 +461,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     period) or an even N with one blade differing (the comb lines the turn rate): the blade count,
     given or measured, tells which; without it nothing is reported. A chopping frequency that rests
     on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade
-    turning that fast could make (``r cos(beta) < MIN_BLADE_REACH_M``) is not a rotor.
+    turning that fast could make at the elevation given (:func:`least_tip_speed_mps`) is not a rotor.
     A comb whose every k-th line stands out, read neither as a turn (blade count given or measured, see
     :func:`_comb_blades`) nor by the echo's rate, is a turn of k blades (one differing, the chopping k times the
     spacing) or rotors at one rate cancelling the lines between (the chopping the spacing): withheld as
@@ -574,13 +578,16 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             return Rotation.withheld("dwell_short", note)
         note = "rotation not estimable: no periodic blade flashes"
         return Rotation.withheld("no_flashes", note)
-    fastest_mps = 2 * np.pi * float(chopping_hz.max()) * MIN_BLADE_REACH_M
-    if not aliased and halfwidth_mps is not None and halfwidth_mps < fastest_mps:
+    if not aliased and timed_hz is None and (held := _comb_against_power(power(), chopping_hz)):
+        return held
+    least_mps = least_tip_speed_mps(float(chopping_hz.max()), n_blades=n_blades, elevation_deg=elevation_deg)
+    if not aliased and halfwidth_mps is not None and halfwidth_mps < least_mps:
         weak = _power_flashes(power(), n_blades=n_blades)
         if weak is not None:
             return weak
         note = (f"rotation not estimable: a comb at {np.median(chopping_hz):.4g} Hz in a micro-Doppler only "
-                f"{halfwidth_mps:.2g} m/s wide is no rotor (blades turning that fast reach >= {fastest_mps:.2g} m/s)")
+                f"{halfwidth_mps:.2g} m/s wide is no rotor (blades turning that fast, seen at "
+                f"{elevation_deg:g} deg, reach >= {least_mps:.2g} m/s)")
         return Rotation.withheld("not_rotor", note)
     chopping_value = float(np.median(chopping_hz))
     if pattern and measured_n is None and least_n is None and not aliased:
@@ -623,6 +630,44 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     else:
         measured = Measured(rate)
     return Rotation(chopping, measured, rates, blades, source)
+
+
+def _comb_against_power(found, comb_hz):
+    """Rotation withheld as ``ambiguous_period`` when the echo's power (``found``, a
+    :class:`~mdpipe.process.flashes.PowerPeriod` or None) repeats at a rate no rotor with that comb (spacings
+    ``comb_hz``) gives, else None.
+
+    Unaliased flashes are sampled whole: the power of a rotor chopping at ``f`` repeats at ``f`` (N even), ``2 f``
+    (N odd) or, one blade differing, once a turn, ``f / N``; of one whose comb lines its turn rate, at ``k f`` (k
+    up to 2N). A rate the comb's k or 1/k times for no whole k in those ranges (within ``POWER_COMB_TOLERANCE``:
+    rotors a few per cent apart) says that the comb is none of those: six rotors 2 % apart smeared their high
+    orders, and a comb at 11 times the chopping frequency, 1202 Hz, outscored it while the power repeated at 108.6
+    Hz; a three-blade rotor's comb read at 3 f, 486 Hz, its power repeating at 2 f."""
+    if found is None:
+        return None
+    ratio = 1.0 / found.period_s / float(np.median(comb_hz))
+    whole = [k for k in range(1, 2 * combs.MAX_BLADES + 1) if abs(ratio / k - 1) <= POWER_COMB_TOLERANCE]
+    whole += [k for k in range(2, combs.MAX_BLADES + 1) if abs(ratio * k - 1) <= POWER_COMB_TOLERANCE]
+    if whole:
+        return None
+    note = (f"rotation not estimable: the line comb says {np.median(comb_hz):.4g} Hz and the echo's power repeats "
+            f"at {1.0 / found.period_s:.4g} Hz, {ratio:.3g} times it, as no rotor with that comb does")
+    return Rotation.withheld("ambiguous_period", note)
+
+
+def least_tip_speed_mps(chopping_hz, *, n_blades, elevation_deg):
+    """The least radial speed (m/s) the tips of any rotor chopping at ``chopping_hz`` reach: blades of
+    ``MIN_BLADE_M`` turning at ``chopping_hz / N`` (``n_blades`` given, else ``combs.MAX_BLADES``), their disc seen
+    at ``elevation_deg`` tilted ``ROTOR_TILT_DEG`` towards face-on; 0 when the elevation is not given.
+
+    The echo gives ``r cos(beta)``, which has no floor while beta is unknown: a quadrotor seen from below (88 deg,
+    discs tilted 3-4 deg) spread its 12 cm blades' tips over +-3.8 m/s, its comb at 218 Hz.
+    """
+    seen_deg = None if elevation_deg is None else abs(elevation_deg) + ROTOR_TILT_DEG
+    if seen_deg is None or seen_deg >= 90.0:
+        return 0.0
+    turn_hz = chopping_hz / (n_blades if n_blades is not None else combs.MAX_BLADES)
+    return float(2 * np.pi * turn_hz * MIN_BLADE_M * np.cos(np.deg2rad(seen_deg)))
 
 
 def _span_ambiguity(what, frequency_hz, *, prf_hz, dwell_s, power):
@@ -913,7 +958,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     turn = rotation(body.demodulated, aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                     noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s,
                     halfwidth_mps=band.halfwidth.value, body_found=body.track_hz is not None,
-                    dense_half_width_hz=band.dense_half_width_hz)
+                    dense_half_width_hz=band.dense_half_width_hz, elevation_deg=params.elevation_deg)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,
