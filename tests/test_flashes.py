@@ -143,3 +143,44 @@ def test_a_speckled_echo_is_not_flashes():
                                                         max_period_s=1 / 40, recur_share=flashes.POWER_RECUR_SHARE)
         assert white.strength * np.sqrt(n - white.peak_lag) >= 8.0
         assert flashes.power_period(signal, prf_hz=prf_hz, min_period_s=1 / 3000) is None
+
+
+RAMP_SHARE = 0.8  # the ramp's share of the chirp period: flashes in the other fifth go unseen
+
+
+def _ramp_parts(period_chirps, *, n_chirps=6000, phase_chirps=0.3, amplitude=6.0, wander=0.0, parts=4, seed=3):
+    """A flash train resolved within the ramp: flash j at ``phase + j period (1 + wander sin(2 pi j / J))`` (chirps,
+    J flashes in all) lands, whole, in the part of its chirp's ramp that holds it, or nowhere when it falls between
+    ramps; unit complex noise in every part. Each flash is shorter than a part (0.2 chirp)."""
+    rng = np.random.default_rng(seed)
+    x = (rng.standard_normal((n_chirps, parts)) + 1j * rng.standard_normal((n_chirps, parts))) / np.sqrt(2)
+    j = np.arange(int(n_chirps / period_chirps) - 1)
+    for t in phase_chirps + j * period_chirps * (1 + wander * np.sin(2 * np.pi * j / len(j))):
+        chirp, within = int(t), t % 1.0
+        if within < RAMP_SHARE:
+            x[chirp, int(within / RAMP_SHARE * parts)] += amplitude * np.exp(2j * np.pi * rng.uniform())
+    return x
+
+
+def test_ramp_parts_tell_a_flash_period_the_whole_ramps_double():
+    """Flashes every 37.5 chirps (wandering 0.3 %, as a rotor's rate does) fall at places in the ramp that a Hann
+    window over the whole ramp weighs unequally, two by turns, and some between ramps: the whole ramps' power
+    repeats whole at 75 chirps with 0.1-0.9 of it at 37.5. Resolved within the ramp each flash is caught whole
+    where it falls: the train repeats whole at 37.5 chirps, and not at 75 (a repeat at half of it)."""
+    train = flashes.ramp_train(_ramp_parts(37.5, wander=0.003), ramp_share=RAMP_SHARE, prf_hz=PRF_HZ)
+    assert flashes.ramp_repeats_whole(train, 37.5, shortest_chirps=2.7) is True
+    assert flashes.ramp_repeats_whole(train, 75.0, shortest_chirps=2.7) is False
+
+
+def test_ramp_parts_do_not_settle_flashes_every_other_one_falling_between_ramps():
+    """A steady train every 37.5 chirps from phase 0.45: every other flash falls at 0.95 of a chirp, between
+    ramps, and nothing sees it. The seen flashes repeat every 75 chirps and nothing flashes half-way between them,
+    but nothing could be seen there: 75 chirps is not taken as whole (it cannot tell), nor 37.5 (no repeat)."""
+    train = flashes.ramp_train(_ramp_parts(37.5, phase_chirps=0.45), ramp_share=RAMP_SHARE, prf_hz=PRF_HZ)
+    assert flashes.ramp_repeats_whole(train, 75.0, shortest_chirps=2.7) is None
+    assert not flashes.ramp_repeats_whole(train, 37.5, shortest_chirps=2.7)
+
+
+def test_ramp_parts_of_noise_tell_nothing():
+    train = flashes.ramp_train(_ramp_parts(37.5, amplitude=0.0), ramp_share=RAMP_SHARE, prf_hz=PRF_HZ)
+    assert flashes.ramp_repeats_whole(train, 37.5, shortest_chirps=2.7) is None

@@ -501,9 +501,10 @@ def test_a_folded_comb_that_divides_the_span_leaves_the_chopping_ambiguous(tmp_p
     """A quadrotor of a held-out sweep (seed 9131; clutter left out) at 94 GHz, no blade count given: four equal
     2-blade rotors at 70.6 rev/s chop at 141.3 Hz, sampled at 6283 Hz: PRF / 44.5. Their folded chopping comb lies
     on the grid PRF / 89 = 70.6 Hz, and their flashes, shorter than a chirp, are caught every other passage: the
-    flash times repeat at 70.7 Hz too, and the power repeats, not whole, at 14 ms. Old code reported 70.7 Hz as
-    the chopping frequency with status ok (half the truth); any multiple of a spacing that divides the span folds
-    onto it, so the chopping is withheld as ambiguous."""
+    flash times repeat at 70.7 Hz too, and the power read from whole ramps repeats, not whole, at 14 ms (resolved
+    within the ramp, whole at 7.08 ms: 141.2 Hz). Old code reported 70.7 Hz as the chopping frequency with status
+    ok (half the truth), and again once the power's whole repeat at twice it was taken to lift the ambiguity; any
+    multiple of a spacing that divides the span folds onto it, so the chopping is withheld as ambiguous."""
     radar = dict(f_start_hz=94.0e9, f_stop_hz=94.1e9, ramp_up_s=127.322e-6, chirp_period_s=159.152e-6,
                  sample_rate_hz=502662.54114764143, n_samples=64, n_chirps=2850, n_channels=2)
     quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 44.0809, "body_rcs_m2": 0.00146636,
@@ -927,6 +928,31 @@ def test_comb_and_power_rates_a_rotor_allows():
                               ([100.0], 1200.0), ([600.0], 100.0)):
         assert held(comb_hz, power_hz) is None
     assert _comb_against_power(None, np.array([1202.5])) is None
+
+
+def test_flashes_resolved_within_the_ramp_settle_their_period(tmp_path):
+    """A quadrotor of the default sweep (scene 0111, clutter left out) at 77 GHz, N = 2 given: flashes of its
+    tapered 15 cm blades, shorter than a chirp (the rotors chop at 191.8-194.2 Hz, a flash every 43 chirps), too
+    weak for flash times or combs; the echo's power repeats at 5.2 ms. Read from whole ramps it could repeat
+    whole only at a multiple of the flash period (each flash weighed by where it falls in the window), the flash
+    period's own repeat under the noise's reach: withheld. Cut in eight parts, each ramp catches each flash whole
+    where it falls; no half to sixth of the period repeats there, where three quarters of such flashes would be
+    seen: the chopping frequency is the power's rate."""
+    radar = dict(f_start_hz=76.5e9, f_stop_hz=76.6e9, ramp_up_s=9.63663e-05, chirp_period_s=0.000120458,
+                 sample_rate_hz=1328265.1728664483, n_samples=128, n_chirps=2048, n_channels=1)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 3.85282, "body_rcs_m2": 0.024842,
+            "body_scatterers": [{"offset_m": [0.05, 0.0, -0.06], "rcs_m2": 0.0042757}],
+            "motion": {"position_m": [28.5733, 0.993143, 0.581679], "velocity_mps": [-0.129572, -0.495167, 0.0],
+                       "sway_amplitude_m": [0.167489, 0.0312975, 0.0975476], "sway_period_s": 2.33404},
+            "rotors": {"count": 4, "blade_profile": "tapered", "tip_reflectivity": 0.536316, "root_m": 0.01,
+                       "phase_deg": [246.374, 186.68, 33.4702, 177.404], "blade_rcs_m2": 0.000504515,
+                       "rate_wander_fraction": 0.00735634, "rate_wander_period_s": 2.28309,
+                       "tilt_deg": [2.04873, -0.988178, -1.96724, 0.69922], "blades": 2, "arm_m": 0.297662,
+                       "blade_length_m": 0.148495, "blade_gains": [1.0, 1.43007],
+                       "rev_per_s": [96.2523, -95.909, 96.7892, -97.1219]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=29.1063, seed=2058960818, n_blades=2)
+    assert row["chopping_freq_hz_status"] == "ok" and 191.8 * 0.99 <= row["chopping_freq_hz"] <= 194.2 * 1.01
+    assert row["rotation_rate_hz_status"] == "ok" and row["rotation_rate_hz"] == pytest.approx(96.5, rel=0.01)
 
 
 def test_flash_times_of_rotors_far_apart_in_rate_give_no_period(tmp_path):

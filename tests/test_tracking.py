@@ -32,7 +32,7 @@ def tracked_signal(path, process=ProcessParams()):
                                         chunk_chirps=process.chunk_chirps)
         detections = selection.detect(stats, selection.detection_test(stats), max_targets=1)
         tracks = target_tracks(stats, detections, process, reader.params.n_samples)
-        track, signal, _ = target_signals(reader, stats, tracks, process)[0]
+        track, signal, _, _ = target_signals(reader, stats, tracks, process)[0]
         range_min_m, range_max_m = track.range_m.min(), track.range_m.max()
         return signal, reader.params, (range_min_m, range_max_m)
 

@@ -17,7 +17,7 @@ from mdpipe.process import combs, doppler, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import moving_average, running_median
-from mdpipe.process.flashes import flash_period, power_period
+from mdpipe.process.flashes import PowerPeriod, flash_period, power_period, ramp_repeats_whole, ramp_train
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, flap_glide_share, wingbeat
@@ -42,6 +42,7 @@ TILT_TOLERANCE = 0.03        # blade length ok only where that tilt moves cos(be
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
 TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
+MAX_RAMP_DIVISOR = 6         # a power period not whole within the ramp: its halves to sixths are tried there
 POWER_COMB_TOLERANCE = 0.1   # an unaliased comb and its echo's power rate are a whole ratio apart within 10 %: rotors
                              # apart in rate (chopping at 123-134 Hz, the power repeated with the fastest, 133.1 Hz,
                              # the comb was their median, 125.2 Hz)
@@ -356,16 +357,22 @@ class Rotation:
         return cls(withheld(status, note), withheld(status, note))
 
 
-def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, min_hz):
+def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, min_hz, ramp=None):
     """Chopping (unaliased: the echo's period) or flash rate (aliased: flash timing) in Hz, None, or an ambiguity.
 
-    Returns (frequency_hz or None, note): a note names an ambiguity the flash times could not settle.
+    Returns (frequency_hz or None, note): a note names an ambiguity the flash times could not settle, unless the
+    echo resolved within the ramp (``ramp()``, a :class:`~mdpipe.process.flashes.RampTrain`, or None) repeats
+    whole at one of the two periods (:func:`~mdpipe.process.flashes.ramp_repeats_whole`).
     """
     if aliased:
         found = flash_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ,
                              max_period_s=1.0 / min_hz, noise_power=2 * noise_power)  # a difference doubles noise
         if found is None:
             return None, None
+        settled = found.ambiguous and _settled_in_ramp(ramp, found.period_s * prf_hz,
+                                                       (1, found.ambiguous), prf_hz=prf_hz)
+        if settled:
+            return prf_hz / settled, None
         if found.ambiguous:
             return None, (f"the flash times fit {found.period_s * 1e3:.3g} ms and, by their pairs, "
                           f"{found.period_s * 1e3 / found.ambiguous:.3g} ms (flashes shorter than a chirp are sampled "
@@ -377,6 +384,53 @@ def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noi
     if found is None or found.strength < MIN_ROTOR_PERIODICITY:
         return None, None
     return 1.0 / found.period_s, None
+
+
+def demodulated_parts(parts, track_hz, *, prf_hz):
+    """Each ramp part's slow time (columns of ``parts``) demodulated by the body's Doppler track (None: as is)."""
+    if track_hz is None:
+        return parts
+    return np.stack([doppler.demodulate(column, track_hz, prf_hz=prf_hz) for column in parts.T], axis=1)
+
+
+def _settled_in_ramp(ramp, period_chirps, divisors, *, prf_hz):
+    """The first of ``period_chirps / k`` (k in ``divisors``) at which the echo resolved within the ramp
+    (``ramp()``) repeats whole, in chirps; None when ``ramp`` is None, or it settles none. Each is tested only
+    after the one before it was found not whole (a shorter repeat seen): a period the ramp cannot tell stops the
+    search."""
+    if ramp is None:
+        return None
+    shortest = prf_hz / combs.MAX_CHOP_HZ
+    for divisor in divisors:
+        whole = ramp_repeats_whole(ramp(), period_chirps / divisor, shortest_chirps=shortest)
+        if whole:
+            return period_chirps / divisor
+        if whole is None:
+            return None
+    return None
+
+
+def resolved_in_ramp(found, ramp, *, prf_hz):
+    """The echo's power period ``found`` (a :class:`~mdpipe.process.flashes.PowerPeriod` or None), settled by
+    the echo resolved within the ramp (``ramp``: a cached callable giving its
+    :class:`~mdpipe.process.flashes.RampTrain`, or None).
+
+    Read from whole ramps, flashes shorter than a chirp may repeat whole only at a multiple of their period, and a
+    period that repeats whole there may yet hold a weak shorter one (:class:`~mdpipe.process.flashes.PowerPeriod`).
+    Resolved within the ramp: the period, or else the first of its halves to sixths, that repeats whole there is
+    taken as whole (:func:`~mdpipe.process.flashes.ramp_repeats_whole`); one found not whole there, a shorter
+    repeat seen, is not; where the ramp cannot tell, ``found`` stands.
+    """
+    if found is None or ramp is None:
+        return found
+    period = found.period_s * prf_hz
+    verdict = ramp_repeats_whole(ramp(), period, shortest_chirps=prf_hz / combs.MAX_CHOP_HZ)
+    if verdict is None:
+        return found
+    if verdict:
+        return PowerPeriod(found.period_s, True)
+    settled = _settled_in_ramp(ramp, period, range(2, MAX_RAMP_DIVISOR + 1), prf_hz=prf_hz)
+    return PowerPeriod(settled / prf_hz, True) if settled else PowerPeriod(found.period_s, False)
 
 
 def _power_flashes(found, *, n_blades):
@@ -447,7 +501,7 @@ def _chopping_from_flash_rate(flash_rate_hz, *, n_blades):
 
 
 def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, halfwidth_mps,
-             dense_half_width_hz, body_found=True, elevation_deg=None):
+             dense_half_width_hz, body_found=True, elevation_deg=None, ramp=None):
     """Rotation of the rotors from their line combs and from the echo's period (or flash times when aliased).
 
     * The combs (:mod:`mdpipe.process.combs`) give each resolvable rotor's chopping frequency ``N f_i``.
@@ -493,8 +547,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             micro = micro * np.exp(-2j * np.pi * offset_hz * np.arange(len(micro)) / prf_hz)
     lines = combs.line_spectrum(micro, prf_hz=prf_hz, noise_power=noise_power)  # shared by the comb and N tests
     # the echo's power period, read only where a path needs it (an FFT of the dwell: 24 ms for 35k chirps)
-    power = functools.cache(lambda: power_period(difference(demodulated), prf_hz=prf_hz,
-                                                 min_period_s=1.0 / combs.MAX_CHOP_HZ))
+    power = functools.cache(lambda: resolved_in_ramp(power_period(difference(demodulated), prf_hz=prf_hz,
+                                                                  min_period_s=1.0 / combs.MAX_CHOP_HZ),
+                                                     ramp, prf_hz=prf_hz))
     fastest_hz = combs.max_chop_hz(n_blades)  # a comb wider than a given count's chopping at the top rate is not it
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             max_hz=fastest_hz, lines=lines)
@@ -509,7 +564,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             if halfwidth_mps is not None and band_hz > 0:  # its reach, for the blade reach test
                 halfwidth_mps *= max(1.0, extent_hz / band_hz)
     timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
-                                                   prf_hz=prf_hz, noise_power=noise_power, min_hz=slowest_hz)
+                                                   prf_hz=prf_hz, noise_power=noise_power, min_hz=slowest_hz,
+                                                   ramp=ramp)
     if ambiguity is not None and comb is None:
         note = f"rotation not estimable: {ambiguity}"
         return Rotation.withheld("ambiguous_period", note)
@@ -534,6 +590,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             else:
                 chopping_hz, ratio = np.array([timed_hz]), 1.0
         if _agrees(ratio):
+            if aliased and (held := _flashes_missed(power(), timed_hz,
+                                                    n_blades=n_blades if n_blades is not None else measured_n)):
+                return held
             if len(chopping_hz) == 1:
                 chopping_hz = np.array([timed_hz])
         elif measured_n and _agrees(ratio * measured_n):
@@ -675,7 +734,8 @@ def _span_ambiguity(what, frequency_hz, *, prf_hz, dwell_s, power):
     ``frequency_hz``) is the PRF over a whole number M, within what the dwell resolves (``1 / dwell_s``: M chirps a
     period, drifting less than a chirp over the dwell), and the echo's power (``power()``, a
     :class:`~mdpipe.process.flashes.PowerPeriod` or None) does not repeat whole at a whole multiple of it (the
-    flash rate itself, no shorter repeat left); else None.
+    flash rate itself, no shorter repeat left); else None. A whole repeat at k times it (k >= 2) leaves the
+    chopping to what reads k (a blade count; not flash times at it: :func:`_flashes_missed`).
 
     A chopping comb at ``m f`` then folds onto the grid ``k f`` (every residue of ``k m`` mod M, for m prime to
     M), and flashes shorter than a chirp every ``M / m`` chirps are caught every m-th, each M chirps: four equal
@@ -693,6 +753,26 @@ def _span_ambiguity(what, frequency_hz, *, prf_hz, dwell_s, power):
     note = (f"rotation not estimable: the {what} at {frequency_hz:.4g} Hz, the PRF over {span_orders:.1f}: "
             "a whole multiple of it folds onto it, its flashes shorter than a chirp caught at some passages only; "
             "another PRF tells which")
+    return Rotation.withheld("ambiguous_period", note)
+
+
+def _flashes_missed(found, timed_hz, *, n_blades):
+    """Rotation withheld as ``ambiguous_period`` when the echo's power (``found``, a
+    :class:`~mdpipe.process.flashes.PowerPeriod` or None) repeats whole at k >= 2 times the rate of flash times
+    that a folded comb repeats: the flash times then caught every k-th flash only, as comb and flash times do when
+    the PRF is a whole multiple of the chopping over k. Four rotors chopping at 141.3 Hz sampled at PRF / 44.5
+    left comb and flash times at 70.7 Hz, the power (resolved within the ramp) whole at 141.2 Hz. An odd blade
+    count (``n_blades``, given or measured) flashes twice per chopping period: k = 2 is then its own. Else None."""
+    if found is None or not found.whole:
+        return None
+    ratio = 1.0 / found.period_s / timed_hz
+    if round(ratio) < 2 or not _agrees(ratio, round(ratio)):
+        return None
+    if round(ratio) == 2 and n_blades is not None and n_blades % 2:
+        return None
+    note = (f"rotation not estimable: the flash times and the folded line comb say {timed_hz:.4g} Hz and the echo's "
+            f"power repeats whole at {1.0 / found.period_s:.4g} Hz, {round(ratio)} times it: flashes shorter than a "
+            "chirp caught at some passages only; another PRF tells which")
     return Rotation.withheld("ambiguous_period", note)
 
 
@@ -931,7 +1011,8 @@ def _columns(primary, measured, derived=None):
     return entries
 
 
-def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=None):
+def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=None, ramp_parts=None,
+                   ramp_share=1.0):
     """Measure every feature of one target's complex slow-time ``signal`` (channels combined).
 
     Parameters
@@ -943,6 +1024,10 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     params : ProcessParams
     track : RangeTrack or None
         The target's range over the dwell, which unfolds an aliased body Doppler.
+    ramp_parts : callable or None
+        Returns the target's slow time in parts of every ramp, (n_chirps, S) complex
+        (:func:`mdpipe.process.pipeline.ramp_parts`), called only where a path reads the echo's power period or
+        leaves flash times ambiguous; ``ramp_share``: the ramp's share of the chirp period.
     """
     dwell_s = len(signal) / prf_hz
     s = np.asarray(signal, dtype=np.complex128)
@@ -955,10 +1040,13 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     body_doppler_hz = 0.0 if body.track_hz is None else float(doppler.fold_hz(np.mean(body.track_hz), prf_hz=prf_hz))
     bandwidth, extent = paper_bandwidth(body.demodulated, prf_hz=prf_hz, threshold_db=params.threshold_db,
                                         body_doppler_hz=body_doppler_hz, aliased=band.aliased)
+    ramp = None if ramp_parts is None else functools.cache(
+        lambda: ramp_train(demodulated_parts(ramp_parts(), body.track_hz, prf_hz=prf_hz), ramp_share=ramp_share,
+                           prf_hz=prf_hz))
     turn = rotation(body.demodulated, aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                     noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s,
                     halfwidth_mps=band.halfwidth.value, body_found=body.track_hz is not None,
-                    dense_half_width_hz=band.dense_half_width_hz, elevation_deg=params.elevation_deg)
+                    dense_half_width_hz=band.dense_half_width_hz, elevation_deg=params.elevation_deg, ramp=ramp)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,

@@ -65,6 +65,13 @@ RESOLVED_CHIRPS = 4         # a power peak this wide (at half its prominence) or
 RESOLVED_SIGMAS = 8.0       # ... read only on a peak this many standard errors high (noise widened two single-rotor
                             # trains' peaks at 6.1 and 6.6 standard errors, both read at a multiple of the flashes')
 AROUND = 0.03               # a lag period / k is looked for within +-3 %
+RAMP_PARTS = 8              # the ramp is cut in this many parts to see where in it a flash falls
+RAMP_SUB_SHARE = 0.5        # resolved within the ramp, a flash period repeats with this share of a multiple's or more
+                            # (0.77-0.96 in trains the whole ramps read at 2 and 3 flash periods) ...
+RAMP_SEEN_SHARE = 0.75      # ... where at least this share of the times it puts flashes at fall within a ramp
+RAMP_VISIBLE_SIGMAS = 4.0   # ... and the repeat those would show stands this many sigmas
+RAMP_PROFILE_SHARE = 0.01   # where in the ramp the flashes fall: read from the parts' top 1 % of power
+RAMP_DETREND_S = 2 * MAX_POWER_PERIOD_S  # the power resolved within the ramp, less its mean over this time
 
 
 @dataclass(frozen=True)
@@ -247,3 +254,119 @@ def _repeats_whole(r, lag, *, floor, sampled, shortest):
         if len(peaks) and r[peaks].max() >= max(SUB_SHARE * r[lag], floor):
             return False
     return True
+
+
+@dataclass(frozen=True)
+class RampTrain:
+    """A body-free echo's power at the parts of every ramp (:func:`ramp_train`): ``power`` on a grid of
+    ``slot_chirps`` (a part's length, in chirp periods), ``seen`` where a part was sampled (the gaps between ramps
+    are not)."""
+
+    power: np.ndarray
+    seen: np.ndarray
+    slot_chirps: float
+    ramp_share: float
+    profile: np.ndarray  # the flashes' power in each part of the ramp over the dwell (:func:`ramp_train`)
+
+
+def ramp_train(parts, *, ramp_share, prf_hz):
+    """:class:`RampTrain` of ``parts`` (n_chirps, S): the body-demodulated slow time of each of S equal parts of
+    the ramp (:func:`mdpipe.process.ranging.ramp_segments`), the ramp ``ramp_share`` of the chirp period.
+
+    Each part is first-differenced along the chirps (the body, demodulated to 0 Hz, and the clutter taken out), its
+    power placed at its part's time, less its mean over ``RAMP_DETREND_S`` about it: what changes
+    slower than any flash period read (``MAX_POWER_PERIOD_S``: the target crossing the range bin, the rotors'
+    phases drifting through each other) would otherwise raise the power's correlation at every lag."""
+    n_chirps, n_parts = parts.shape
+    power = np.abs(np.diff(parts, axis=0)) ** 2
+    slot = ramp_share / n_parts
+    index = np.floor(np.arange(n_chirps - 1)[:, None] / slot + np.arange(n_parts)[None, :] + 0.5).astype(int).ravel()
+    grid, seen = np.zeros(index.max() + 1), np.zeros(index.max() + 1, dtype=bool)
+    grid[index], seen[index] = power.ravel(), True
+    size = max(1, int(round(RAMP_DETREND_S * prf_hz / slot)))
+    local = moving_average(grid, size) / np.maximum(moving_average(seen.astype(float), size), 1e-12)
+    # where in the ramp the flashes fall: each part's power over the capture's top RAMP_PROFILE_SHARE (short and
+    # few, the flashes hold it)
+    top = np.quantile(power, 1 - RAMP_PROFILE_SHARE)
+    profile = np.sum(np.maximum(power - top, 0.0), axis=0)
+    return RampTrain(np.where(seen, grid - local, 0.0), seen, slot, ramp_share, profile)
+
+
+def _masked_autocorrelation(x, seen, max_lag):
+    """Autocorrelation of ``x`` over the samples ``seen`` (mean removed, each lag averaged over its pairs of seen
+    samples), 1 at lag 0, lags 0 .. max_lag."""
+    v = np.where(seen, x - np.mean(x[seen]), 0.0)
+    m = seen.astype(float)
+    size = 1 << int(np.ceil(np.log2(2 * len(x))))
+    products = np.fft.irfft(np.abs(np.fft.rfft(v, size)) ** 2, size)[:max_lag + 1]
+    pairs = np.fft.irfft(np.abs(np.fft.rfft(m, size)) ** 2, size)[:max_lag + 1]
+    r = products / np.maximum(np.round(pairs), 1.0)
+    return r / r[0] if r[0] > 0 else r
+
+
+def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
+    """Whether the echo's power, resolved within the ramp (``train``, a :class:`RampTrain`), repeats whole at
+    ``period_chirps``: True, False (it repeats at ``period / k`` too: the flashes come k times as often), or None
+    (it cannot tell).
+
+    Flashes shorter than a chirp caught by the whole ramp's transform weigh by where they fall in its window,
+    and that pattern repeats after k flashes: the power repeats whole at k flash periods, the flash period
+    holding as little as a tenth of it (:class:`PowerPeriod`). Resolved within the ramp each flash is caught
+    in its part whole, unless it falls between the ramps: the flash period repeats with the share of the
+    flashes seen (0.77-0.96 of the period's repeat for one and four rotors 37.25-37.5 chirps a flash, four fifths
+    seen, whose whole ramps repeated at 2 and 3 flash periods). Down to ``shortest_chirps`` (the shortest flash
+    period searched):
+
+    * the repeat at the period (its best within +-``AROUND``) stands ``POWER_SIGMAS`` robust sigmas of the
+      autocorrelation over the lags read;
+    * no ``period / k`` repeats with ``RAMP_SUB_SHARE`` of the period's repeat (else False), where flashes would
+      show the share of them that falls within a ramp (``RAMP_SEEN_SHARE`` or more) times it, and that stands
+      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise). Rotors a
+      phase apart repeat in part at many lags (0.3-0.45 of the period's in a hexarotor);
+    * the power's strongest peak past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it
+      (else False);
+    * the share within a ramp is that of the times ``i period / k`` after the power's flashes that falls within
+      a ramp, each flash anywhere in its part (the parts weighed by ``RampTrain.profile``): flashes that drift
+      through the ramp put 0.8 of them there for a ramp 0.8 of the chirp; flashes held at one place, none or all,
+      or, where their part's times straddle the gap, some: it takes three quarters.
+    """
+    lag = period_chirps / train.slot_chirps
+    last = int(np.ceil(WHOLE_SPAN * lag)) + 2
+    if last >= len(train.power) // 2:
+        return None
+    r = _masked_autocorrelation(train.power, train.seen, last)
+    sigma = robust_sigma(r[int(lag / 4):last])
+
+    def best(at):
+        lo, hi = int(np.floor(at * (1 - AROUND))) - 1, int(np.ceil(at * (1 + AROUND))) + 1
+        return float(np.max(r[max(lo, 1):hi + 1]))
+
+    peak = best(lag)
+    if not sigma > 0 or peak < POWER_SIGMAS * sigma:
+        return None
+    later = local_maxima(r[int(1.5 * lag):last + 1]) + int(1.5 * lag)
+    if len(later):
+        strongest = later[np.argmax(r[later])] / lag
+        if r[later].max() > peak and abs(strongest - round(strongest)) > WHOLE_TOLERANCE:
+            return False
+    profile = train.profile  # where in the ramp the flashes fall
+    if not profile.sum() > 0:
+        return None
+    starts = np.arange(len(profile)) * train.slot_chirps  # a flash lies anywhere in its part
+    for divisor in range(2, int(period_chirps / shortest_chirps) + 1):
+        shifted = (starts[:, None] + period_chirps / divisor * np.arange(1, divisor)) % 1.0
+        within = _ramp_overlap(shifted, train.slot_chirps, train.ramp_share)  # a flash anywhere in its part
+        seen = float(profile @ np.mean(within, axis=1) / profile.sum())
+        if best(lag / divisor) >= RAMP_SUB_SHARE * peak:
+            return False
+        if seen < RAMP_SEEN_SHARE or seen * peak < RAMP_VISIBLE_SIGMAS * sigma:  # what flashes there would show
+            return None
+    return True
+
+
+def _ramp_overlap(start, length, ramp_share):
+    """Share of ``[start, start + length)`` (chirps, start in [0, 1)) that falls within the ramp, ``[0, ramp_share)``
+    of each chirp."""
+    end = start + length
+    inside = np.clip(np.minimum(end, ramp_share) - start, 0.0, None) + np.clip(end - 1.0, 0.0, ramp_share)
+    return inside / length

@@ -1,5 +1,6 @@
 """One capture from file to feature rows: detect, follow, combine, analyse, classify."""
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -7,7 +8,7 @@ import numpy as np
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
-from mdpipe.process import memory, ranging, selection
+from mdpipe.process import flashes, memory, ranging, selection
 from mdpipe.process.classify import classify
 from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analyse_target
 
@@ -65,7 +66,7 @@ def target_signals(reader, stats, tracks, process):
 
     Returns
     -------
-    list of (:class:`~mdpipe.process.features.RangeTrack`, signal (n_chirps,) complex, rx_gain_db)
+    list of (:class:`~mdpipe.process.features.RangeTrack`, signal (n_chirps,) complex, rx_gain_db, weight (C,))
     """
     weights, gains = [], []
     for _, _, visits in tracks:
@@ -79,8 +80,18 @@ def target_signals(reader, stats, tracks, process):
     every = max(1, stats.n_chirps // TRACK_POINTS)
     t_s = np.arange(0, stats.n_chirps, every) / params.prf_hz
     return [(RangeTrack(t_s=t_s, range_m=ranging.bin_range_m(track_bins[::every], params, process.zero_pad),
-                        bin_m=params.range_bin_m), signals[:, i], gain)
-            for i, (track_bins, gain) in enumerate(zip(bins, gains))]
+                        bin_m=params.range_bin_m), signals[:, i], gain, weight)
+            for i, (track_bins, gain, weight) in enumerate(zip(bins, gains, weights))]
+
+
+def ramp_parts(reader, track_bins, weight, process):
+    """A cached callable: the target's slow time in ``flashes.RAMP_PARTS`` parts of every ramp
+    (:func:`mdpipe.process.ranging.ramp_segments`), read from the open capture on its first call only: the
+    features ask for it only where a path reads the echo's power period or flash times stay ambiguous (one more
+    pass over the capture)."""
+    return functools.cache(lambda: ranging.ramp_segments(reader, track_bins, weight, segments=flashes.RAMP_PARTS,
+                                                         window=process.range_window, zero_pad=process.zero_pad,
+                                                         chunk_chirps=process.chunk_chirps))
 
 
 def _base_row(path, stats, process, params):
@@ -150,19 +161,22 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         detections = [detection for detection, _, _ in tracks]
         targets = target_signals(reader, stats, tracks, process)
         layout = reader.layout.describe()
-    for index, (detection, (track, signal, rx_gain_db)) in enumerate(zip(detections, targets)):
-        analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
-                                  noise_power=noise, params=process,
-                                  track=None if detection.fixed_bin is not None else track)  # a fixed gate does not move
-        range_min_m, range_max_m = float(track.range_m.min()), float(track.range_m.max())
-        row = _base_row(path, stats, process, params)
-        row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),
-                   range_min_m=range_min_m, range_max_m=range_max_m, rx_gain_db=rx_gain_db)
-        row.update(analysis.row)
-        label, reason = classify(row, detected=True)
-        row["class"] = label
-        row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + capture_notes)
-        rows.append(row)
-        analyses.append(analysis)
+        for index, (detection, (track, signal, rx_gain_db, weight), (_, track_bins, _)) in enumerate(
+                zip(detections, targets, tracks)):
+            analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
+                                      noise_power=noise, params=process,
+                                      track=None if detection.fixed_bin is not None else track,  # fixed: no track
+                                      ramp_parts=ramp_parts(reader, track_bins, weight, process),
+                                      ramp_share=params.ramp_up_s / params.chirp_period_s)
+            range_min_m, range_max_m = float(track.range_m.min()), float(track.range_m.max())
+            row = _base_row(path, stats, process, params)
+            row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),
+                       range_min_m=range_min_m, range_max_m=range_max_m, rx_gain_db=rx_gain_db)
+            row.update(analysis.row)
+            label, reason = classify(row, detected=True)
+            row["class"] = label
+            row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + capture_notes)
+            rows.append(row)
+            analyses.append(analysis)
     return CaptureResult(str(path), params, layout, stats, detections, analyses, rows, noise_power=noise,
                          process=process, detection_test=test)

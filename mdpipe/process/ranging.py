@@ -343,3 +343,30 @@ def slow_time(reader, tracks, weights, *, window="hann", zero_pad=1, chunk_chirp
         for t, static in along_tracks(x, first, stop):
             out[first:stop, t] -= static
     return out
+
+
+def ramp_segments(reader, track_bins, weight, *, segments, window="hann", zero_pad=1, chunk_chirps=256):
+    """Pass 2b: a target's slow time in each of ``segments`` equal parts of every ramp: complex
+    (n_chirps, segments), V.
+
+    Each part of the IF is windowed on its own (``window`` of its length) and transformed at the track's bin
+    (``track_bins``, padded grid, its mean over each read), the channels combined with ``weight`` (C,). The parts
+    see the range ``segments`` times coarser; they tell where in the ramp a flash shorter than a chirp fell,
+    which the whole ramp's transform (one sample per chirp) does not.
+    """
+    params = reader.params
+    n = params.n_samples
+    length = n // segments
+    taper = range_window(window, length)
+    out = np.empty((reader.n_chirps, segments), dtype=np.complex64)
+    centre = (n - 1) / 2
+    for first, block in reader.iter_chunks(chunk_chirps=chunk_chirps):
+        stop = first + block.shape[0]
+        cycles = float(np.mean(track_bins[first:stop])) / (zero_pad * n)  # the beat, cycles per sample
+        kernel = np.zeros((segments, n), dtype=np.complex64)
+        for s in range(segments):
+            m = np.arange(s * length, (s + 1) * length)
+            kernel[s, m] = taper * np.exp(2j * np.pi * cycles * (m - centre))
+        out[first:stop] = np.einsum("mcn,sn,c->ms", block, kernel, np.asarray(weight, dtype=np.complex64),
+                                    optimize=True)
+    return out

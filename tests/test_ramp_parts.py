@@ -1,0 +1,37 @@
+"""Parts of the ramp: a tone present in one part of every chirp shows in that part's transform only."""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from mdpipe.process import ranging
+
+
+class _Chirps:
+    """A reader of (chirps, channels, samples) volts held in memory."""
+
+    def __init__(self, data):
+        self.data = data
+        self.n_chirps = data.shape[0]
+        self.params = SimpleNamespace(n_samples=data.shape[2])
+
+    def iter_chunks(self, *, chunk_chirps):
+        for first in range(0, self.n_chirps, chunk_chirps):
+            yield first, self.data[first:first + chunk_chirps]
+
+
+def test_a_tone_in_one_part_of_the_ramp_shows_in_that_part():
+    """A real tone at bin 20.0 of 128 samples, 1 V, in samples 64-95 (the third of four parts) of every chirp, on
+    the second of two channels: the third part's Hann-windowed DFT at bin 20 reads sum(w) / 2 = 7.75 (the
+    positive-frequency half of a real tone), the other parts, which hold none of its samples, nothing (a part
+    reaching into its neighbour's samples would read some)."""
+    n, chirps = 128, 10
+    data = np.zeros((chirps, 2, n), dtype=np.float32)
+    samples = np.arange(n)
+    data[:, 1, 64:96] = np.cos(2 * np.pi * 20.0 * samples[64:96] / n)
+    parts = ranging.ramp_segments(_Chirps(data), np.full(chirps, 20.0), np.array([0.0, 1.0]), segments=4,
+                                  chunk_chirps=4)
+    assert parts.shape == (chirps, 4)
+    assert np.abs(parts[:, 2]) == pytest.approx(np.hanning(32).sum() / 2, rel=1e-3)
+    assert np.all(np.abs(parts[:, [0, 1, 3]]) < 1e-6)
