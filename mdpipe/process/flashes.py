@@ -274,21 +274,23 @@ def ramp_train(parts, *, ramp_share, prf_hz):
     the ramp (:func:`mdpipe.process.ranging.ramp_segments`), the ramp ``ramp_share`` of the chirp period.
 
     Each part is first-differenced along the chirps (the body, demodulated to 0 Hz, and the clutter taken out), its
-    power placed at its part's time, less its mean over ``RAMP_DETREND_S`` about it: what changes
+    power divided by its median over the dwell (what leaks into one part more than another, the same in every
+    chirp, would repeat every chirp), placed at its part's time, less its mean over ``RAMP_DETREND_S`` about it: what changes
     slower than any flash period read (``MAX_POWER_PERIOD_S``: the target crossing the range bin, the rotors'
     phases drifting through each other) would otherwise raise the power's correlation at every lag."""
     n_chirps, n_parts = parts.shape
     power = np.abs(np.diff(parts, axis=0)) ** 2
+    # where in the ramp the flashes fall: each part's power over the capture's top RAMP_PROFILE_SHARE (short and
+    # few, the flashes hold it)
+    top = np.quantile(power, 1 - RAMP_PROFILE_SHARE)
+    profile = np.sum(np.maximum(power - top, 0.0), axis=0)
+    power = power / np.maximum(np.median(power, axis=0), np.finfo(float).tiny)  # each part's own level
     slot = ramp_share / n_parts
     index = np.floor(np.arange(n_chirps - 1)[:, None] / slot + np.arange(n_parts)[None, :] + 0.5).astype(int).ravel()
     grid, seen = np.zeros(index.max() + 1), np.zeros(index.max() + 1, dtype=bool)
     grid[index], seen[index] = power.ravel(), True
     size = max(1, int(round(RAMP_DETREND_S * prf_hz / slot)))
     local = moving_average(grid, size) / np.maximum(moving_average(seen.astype(float), size), 1e-12)
-    # where in the ramp the flashes fall: each part's power over the capture's top RAMP_PROFILE_SHARE (short and
-    # few, the flashes hold it)
-    top = np.quantile(power, 1 - RAMP_PROFILE_SHARE)
-    profile = np.sum(np.maximum(power - top, 0.0), axis=0)
     return RampTrain(np.where(seen, grid - local, 0.0), seen, slot, ramp_share, profile)
 
 
