@@ -184,3 +184,26 @@ def test_ramp_parts_do_not_settle_flashes_every_other_one_falling_between_ramps(
 def test_ramp_parts_of_noise_tell_nothing():
     train = flashes.ramp_train(_ramp_parts(37.5, amplitude=0.0), ramp_share=RAMP_SHARE, prf_hz=PRF_HZ)
     assert flashes.ramp_repeats_whole(train, 37.5, shortest_chirps=2.7) is None
+
+
+def _sides(flash_period, *, alternate, both=False, n_chirps=8000, amplitude=4.0, seed=5):
+    """Two range sides' slow time: unit complex noise each, and flashes (one chirp, random phase) every
+    ``flash_period`` chirps, by turns on the lower and the upper side (``alternate``: an odd N's approaching and
+    receding blades) or on both at once; ``both``: each flash seen on both sides (a beat that hardly moves)."""
+    rng = np.random.default_rng(seed)
+    x = (rng.standard_normal((n_chirps, 2)) + 1j * rng.standard_normal((n_chirps, 2))) / np.sqrt(2)
+    for j, t in enumerate(np.arange(10.0, n_chirps - 1, flash_period)):
+        on = (0, 1) if both or not alternate else (j % 2,)
+        for side in on:
+            x[int(t), side] += amplitude * np.exp(2j * np.pi * rng.uniform())
+    return x
+
+
+def test_flashes_alternating_range_sides_tell_an_odd_blade_count():
+    """Flashes every 40 chirps by turns on the two sides: each side repeats every 80 chirps and not at 40, the
+    sides correlate 40 chirps apart and not at once: an odd N. Flashes on both sides at once (an even N), or each
+    seen on both sides (an odd N whose beat moves under a bin), or noise: nothing concluded."""
+    assert flashes.sides_alternate(_sides(40.0, alternate=True), 40.0)
+    assert not flashes.sides_alternate(_sides(40.0, alternate=False), 40.0)
+    assert not flashes.sides_alternate(_sides(40.0, alternate=True, both=True), 40.0)
+    assert not flashes.sides_alternate(_sides(40.0, alternate=True, amplitude=0.0), 40.0)

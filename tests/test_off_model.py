@@ -955,6 +955,27 @@ def test_flashes_resolved_within_the_ramp_settle_their_period(tmp_path):
     assert row["rotation_rate_hz_status"] == "ok" and row["rotation_rate_hz"] == pytest.approx(96.5, rel=0.01)
 
 
+def test_flashes_alternating_range_sides_give_an_odd_count_chopping(tmp_path):
+    """A 3-blade quadrotor of the default sweep (scene 0188, clutter left out) at 77 GHz, no blade count given:
+    rotors 92.3-96.3 rev/s (chopping 277-289 Hz), flashes seen only in the power, which repeats every 1.78 ms
+    (561.6 Hz): an even N's chopping period or half an odd N's, withheld before. Read at its range sides (1.5 bins
+    off its track), the flashes alternate: each side repeats every second flash, the sides one flash apart. An
+    odd N: the chopping is half the flash rate, the rate under N = 3 assumed (the row says so)."""
+    radar = dict(f_start_hz=76.5e9, f_stop_hz=76.75e9, ramp_up_s=2.94665e-05, chirp_period_s=3.68331e-05,
+                 sample_rate_hz=4343915.976719326, n_samples=128, n_chirps=3424, n_channels=2)
+    quad = {"name": "three_blade_quad", "type": "multirotor", "elevation_deg": 31.5497, "body_rcs_m2": 0.0143814,
+            "motion": {"position_m": [15.9884, 6.46692, 2.59439], "velocity_mps": [0.0, 0.0, 0.0]},
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [271.034, 29.5558, 130.248, 278.73], "blade_rcs_m2": 0.00470399,
+                       "rate_wander_fraction": 0.0177313, "rate_wander_period_s": 2.16901,
+                       "tilt_deg": [0.177101, -2.36771, 2.8747, 0.175845], "blades": 3, "arm_m": 0.389783,
+                       "blade_length_m": 0.163764, "rev_per_s": [92.572, -96.3013, 92.3381, -92.8382]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=0.96186, seed=71547354, elevation_deg=31.5497)
+    assert row["chopping_freq_hz_status"] == "ok" and 277.0 * 0.99 <= row["chopping_freq_hz"] <= 288.9 * 1.01
+    assert row["n_blades"] == 3 and row["n_blades_source"] == "assumed"
+    assert row["rotation_rate_hz_status"] == "assumed_blades"
+
+
 def test_flash_times_of_rotors_far_apart_in_rate_give_no_period(tmp_path):
     """A quadrotor of a held-out sweep (seed 9131; clutter left out) at 77 GHz, N = 2 given: rotors at 124.6-135.9
     rev/s (9 % apart), their flashes shorter than a chirp and caught stroboscopically, PRF / 40-44 each. Their

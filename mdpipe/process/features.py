@@ -17,7 +17,8 @@ from mdpipe.process import combs, doppler, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import moving_average, running_median
-from mdpipe.process.flashes import PowerPeriod, flash_period, power_period, ramp_repeats_whole, ramp_train
+from mdpipe.process.flashes import (PowerPeriod, flash_period, power_period, ramp_repeats_whole, ramp_train,
+                                    sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, flap_glide_share, wingbeat
@@ -387,7 +388,8 @@ def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noi
 
 
 def demodulated_parts(parts, track_hz, *, prf_hz):
-    """Each ramp part's slow time (columns of ``parts``) demodulated by the body's Doppler track (None: as is)."""
+    """Each column of ``parts`` (slow time in ramp parts, or at range sides) demodulated by the body's Doppler
+    track (None: as is)."""
     if track_hz is None:
         return parts
     return np.stack([doppler.demodulate(column, track_hz, prf_hz=prf_hz) for column in parts.T], axis=1)
@@ -433,15 +435,18 @@ def resolved_in_ramp(found, ramp, *, prf_hz):
     return PowerPeriod(settled / prf_hz, True) if settled else PowerPeriod(found.period_s, False)
 
 
-def _power_flashes(found, *, n_blades):
+def _power_flashes(found, *, n_blades, alternate=lambda period_s: False):
     """Rotation from blade flashes that show only in the echo's power (too weak for flash times or line combs):
     ``found``, the power's :class:`~mdpipe.process.flashes.PowerPeriod` or None (then None).
 
     The power of N equal blades repeats once per chopping period for an even N. For an odd N it repeats twice
     or once (the approaching and the receding blade flash alike, or, off the range bin's centre, not), and with
-    one blade differing once a turn. So the power's period is the chopping period only for an even N given and a
+    one blade differing once a turn. So the power's period is the chopping period for an even N given and a
     power that repeats whole (:class:`~mdpipe.process.flashes.PowerPeriod`: one blade differing shows a repeat
-    at the chopping period within the turn's); otherwise rotation is withheld as ``ambiguous_period``.
+    at the chopping period within the turn's), and half of it where, N odd or not given, its flashes alternate
+    between the target's range sides (``alternate(period_s)``, :func:`~mdpipe.process.flashes.sides_alternate`:
+    an odd N's approaching and receding blades by turns; the rate then under N = 3 assumed where N is not given);
+    otherwise rotation is withheld as ``ambiguous_period``.
     """
     if found is None:
         return None
@@ -449,6 +454,15 @@ def _power_flashes(found, *, n_blades):
         chopping_hz = 1.0 / found.period_s
         rate_hz = float(rotor.rotation_rate_from_chopping_hz(chopping_hz, n_blades=n_blades))
         return Rotation(Measured(chopping_hz), Measured(rate_hz), (), n_blades, "given")  # no rotor resolved
+    if found.whole and (n_blades is None or n_blades % 2) and alternate(found.period_s):
+        chopping_hz = 0.5 / found.period_s
+        blades = n_blades or ASSUMED_ODD_BLADES
+        rate_hz = float(rotor.rotation_rate_from_chopping_hz(chopping_hz, n_blades=blades))
+        if n_blades is not None:
+            return Rotation(Measured(chopping_hz), Measured(rate_hz), (), n_blades, "given")
+        rate = Measured(rate_hz, "assumed_blades", f"rotation rate assumes N = {blades} blades (the flashes "
+                        "alternate range sides: an odd count, 3 or 5 alike; give --blades)")
+        return Rotation(Measured(chopping_hz), rate, (), blades, "assumed")
     if not found.whole:
         why = "it repeats in part at other lags: flashes of rotors a phase apart, or a multiple of the flash period"
     elif n_blades is None:
@@ -493,15 +507,16 @@ def _whole_ratio(ratio):
     return 0
 
 
-def _chopping_from_flash_rate(flash_rate_hz, *, n_blades):
+def _chopping_from_flash_rate(flash_rate_hz, *, n_blades, alternating):
     """The chopping frequency (one-element array) from an aliased echo's flash rate: 2N flashes a turn for an
-    odd N given, N for an even one (or none given: the caller marks it assumed)."""
-    odd_given = n_blades is not None and n_blades % 2 == 1
-    return np.array([flash_rate_hz / 2 if odd_given else flash_rate_hz])
+    odd N (given, or, none given, flashes ``alternating`` range sides), N for an even one (or none given and
+    nothing telling: the caller marks it assumed)."""
+    odd = n_blades % 2 == 1 if n_blades is not None else alternating
+    return np.array([flash_rate_hz / 2 if odd else flash_rate_hz])
 
 
 def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, halfwidth_mps,
-             dense_half_width_hz, body_found=True, elevation_deg=None, ramp=None):
+             dense_half_width_hz, body_found=True, elevation_deg=None, ramp=None, sides=None):
     """Rotation of the rotors from their line combs and from the echo's period (or flash times when aliased).
 
     * The combs (:mod:`mdpipe.process.combs`) give each resolvable rotor's chopping frequency ``N f_i``.
@@ -550,6 +565,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     power = functools.cache(lambda: resolved_in_ramp(power_period(difference(demodulated), prf_hz=prf_hz,
                                                                   min_period_s=1.0 / combs.MAX_CHOP_HZ),
                                                      ramp, prf_hz=prf_hz))
+    # flashes every period_s alternating between the target's range sides: an odd N's (read only where asked)
+    alternate = functools.cache(lambda period_s: sides is not None and sides_alternate(sides(), period_s * prf_hz))
     fastest_hz = combs.max_chop_hz(n_blades)  # a comb wider than a given count's chopping at the top rate is not it
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             max_hz=fastest_hz, lines=lines)
@@ -569,7 +586,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     if ambiguity is not None and comb is None:
         note = f"rotation not estimable: {ambiguity}"
         return Rotation.withheld("ambiguous_period", note)
-    chopping_hz, measured_n, pattern, least_n, flashes_only = None, None, None, None, False
+    chopping_hz, measured_n, pattern, least_n, flashes_only, alternating = None, None, None, None, False, False
     if comb is not None:
         chopping_hz, measured_n, pattern = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
                                                         band_hz=count_band_hz, n_blades=n_blades, power=power)
@@ -580,6 +597,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # the flash times twice the comb: an odd N flashes twice per chopping period (the comb is the
             # chopping), or the comb is the turn rate of an even N with one blade differing (the flash times are)
             known = n_blades if n_blades is not None else measured_n
+            if known is None and alternate(1.0 / timed_hz):  # the flashes alternate range sides: an odd N
+                known, alternating = ASSUMED_ODD_BLADES, True
             if known is None:
                 note = (f"rotation not estimable: the flash times say {timed_hz:.4g} Hz and the line comb {centre:.4g} "
                         "Hz: an odd blade count flashes twice per chopping period, an even one with a blade differing "
@@ -608,7 +627,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         elif aliased and not _whole_ratio(ratio):  # folded combs coincide by chance; flash times do not
             if held := _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power):
                 return held
-            chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
+            alternating = n_blades is None and alternate(1.0 / timed_hz)
+            chopping_hz = _chopping_from_flash_rate(timed_hz, n_blades=n_blades, alternating=alternating)
+            flashes_only = True
         else:
             note = (f"rotation not estimable: the line comb says {centre:.4g} Hz and the echo's "
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
@@ -624,11 +645,13 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     elif timed_hz is not None and aliased:
         if held := _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power):
             return held
-        chopping_hz, flashes_only = _chopping_from_flash_rate(timed_hz, n_blades=n_blades), True
+        alternating = n_blades is None and alternate(1.0 / timed_hz)
+        chopping_hz = _chopping_from_flash_rate(timed_hz, n_blades=n_blades, alternating=alternating)
+        flashes_only = True
     elif timed_hz is not None:  # the echo's period: one blade passage
         chopping_hz = np.array([timed_hz])
     if chopping_hz is None:
-        weak = _power_flashes(power(), n_blades=n_blades)
+        weak = _power_flashes(power(), n_blades=n_blades, alternate=alternate)
         if weak is not None:
             return weak
         if slowest_hz > combs.MIN_CHOP_HZ:
@@ -641,7 +664,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return held
     least_mps = least_tip_speed_mps(float(chopping_hz.max()), n_blades=n_blades, elevation_deg=elevation_deg)
     if not aliased and halfwidth_mps is not None and halfwidth_mps < least_mps:
-        weak = _power_flashes(power(), n_blades=n_blades)
+        weak = _power_flashes(power(), n_blades=n_blades, alternate=alternate)
         if weak is not None:
             return weak
         note = (f"rotation not estimable: a comb at {np.median(chopping_hz):.4g} Hz in a micro-Doppler only "
@@ -655,8 +678,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                 f"rate whose phases cancel the lines between (the chopping {chopping_value:.4g} Hz); rotors resolved "
                 "at rates apart, or the echo repeating each 1/N turn, would tell")
         return Rotation.withheld("ambiguous_period", note)
-    parity = None if aliased else combs.odd_blades(micro, float(chopping_hz[0]), prf_hz=prf_hz,
-                                                   half_width_hz=sides_band_hz)
+    parity = True if alternating else None if aliased else combs.odd_blades(micro, float(chopping_hz[0]),
+                                                                             prf_hz=prf_hz, half_width_hz=sides_band_hz)
     doubled = parity if aliased or parity is not None else combs.flashes_doubled(
         micro, float(chopping_hz[0]), prf_hz=prf_hz, half_width_hz=count_band_hz)
     blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades, doubled=doubled, least=least_n)
@@ -665,14 +688,16 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(Measured(chopping_value, "blade_conflict", note), withheld("blade_conflict", note),
                         n_blades=blades, n_blades_source=source)
     chopping = Measured(chopping_value)
-    if source == "assumed" and flashes_only:
+    if source == "assumed" and flashes_only and not alternating:
         chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes an even blade count (an "
                             f"odd one flashes twice per chopping period: {chopping_value / 2:.4g} Hz; give --blades)")
-    elif source == "assumed" and parity:
+    elif source == "assumed" and parity and not alternating:
         chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes equal blades (the flashes "
                             f"alternate sides: an odd count; with one blade differing this comb lines the turn rate "
                             f"and the chopping is {3 * chopping_value:.4g} Hz or more; give --blades)")
-    elif source == "assumed" and doubled:
+    # (flashes alternating range sides at twice a comb make it the chopping: an even N's, one blade differing or
+    # not, flash on both sides at once)
+    elif source == "assumed" and doubled and not alternating:
         chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes equal blades of an odd "
                             f"count (an even count with one blade differing lines its turn rate in this comb: the "
                             f"chopping would be {2 * chopping_value:.4g} Hz or more; give --blades)")
@@ -1011,7 +1036,7 @@ def _columns(primary, measured, derived=None):
     return entries
 
 
-def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=None, ramp_parts=None,
+def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=None, flash_views=None,
                    ramp_share=1.0):
     """Measure every feature of one target's complex slow-time ``signal`` (channels combined).
 
@@ -1024,10 +1049,10 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     params : ProcessParams
     track : RangeTrack or None
         The target's range over the dwell, which unfolds an aliased body Doppler.
-    ramp_parts : callable or None
-        Returns the target's slow time in parts of every ramp, (n_chirps, S) complex
-        (:func:`mdpipe.process.pipeline.ramp_parts`), called only where a path reads the echo's power period or
-        leaves flash times ambiguous; ``ramp_share``: the ramp's share of the chirp period.
+    flash_views : callable or None
+        Returns the target's :class:`~mdpipe.process.ranging.FlashViews` (its slow time in parts of every ramp and
+        at its range sides; :func:`mdpipe.process.pipeline.flash_views`), called only where a path reads the echo's
+        power period or leaves flash times ambiguous; ``ramp_share``: the ramp's share of the chirp period.
     """
     dwell_s = len(signal) / prf_hz
     s = np.asarray(signal, dtype=np.complex128)
@@ -1040,13 +1065,16 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     body_doppler_hz = 0.0 if body.track_hz is None else float(doppler.fold_hz(np.mean(body.track_hz), prf_hz=prf_hz))
     bandwidth, extent = paper_bandwidth(body.demodulated, prf_hz=prf_hz, threshold_db=params.threshold_db,
                                         body_doppler_hz=body_doppler_hz, aliased=band.aliased)
-    ramp = None if ramp_parts is None else functools.cache(
-        lambda: ramp_train(demodulated_parts(ramp_parts(), body.track_hz, prf_hz=prf_hz), ramp_share=ramp_share,
-                           prf_hz=prf_hz))
+    ramp = sides = None
+    if flash_views is not None:
+        ramp = functools.cache(lambda: ramp_train(demodulated_parts(flash_views().parts, body.track_hz, prf_hz=prf_hz),
+                                                  ramp_share=ramp_share, prf_hz=prf_hz))
+        sides = functools.cache(lambda: demodulated_parts(flash_views().sides, body.track_hz, prf_hz=prf_hz))
     turn = rotation(body.demodulated, aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                     noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s,
                     halfwidth_mps=band.halfwidth.value, body_found=body.track_hz is not None,
-                    dense_half_width_hz=band.dense_half_width_hz, elevation_deg=params.elevation_deg, ramp=ramp)
+                    dense_half_width_hz=band.dense_half_width_hz, elevation_deg=params.elevation_deg, ramp=ramp,
+                    sides=sides)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,

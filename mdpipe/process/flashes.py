@@ -71,6 +71,9 @@ RAMP_SUB_SHARE = 0.5        # resolved within the ramp, a flash period repeats w
 RAMP_SEEN_SHARE = 0.75      # ... where at least this share of the times it puts flashes at fall within a ramp
 RAMP_VISIBLE_SIGMAS = 4.0   # ... and the repeat those would show stands this many sigmas
 RAMP_PROFILE_SHARE = 0.01   # where in the ramp the flashes fall: read from the parts' top 1 % of power
+SIDE_BINS = 1.5             # the range sides of a target read this many bins below and above its bin ...
+SIDE_SIGMAS = 4.0           # ... their repeats that tell flashes alternating sides stand this many sigmas ...
+SIDE_SHARE = 0.3            # ... and what flashes on both sides at once would add holds under this share of them
 RAMP_DETREND_S = 2 * MAX_POWER_PERIOD_S  # the power resolved within the ramp, less its mean over this time
 
 
@@ -271,7 +274,7 @@ class RampTrain:
 
 def ramp_train(parts, *, ramp_share, prf_hz):
     """:class:`RampTrain` of ``parts`` (n_chirps, S): the body-demodulated slow time of each of S equal parts of
-    the ramp (:func:`mdpipe.process.ranging.ramp_segments`), the ramp ``ramp_share`` of the chirp period.
+    the ramp (:func:`mdpipe.process.ranging.flash_views`), the ramp ``ramp_share`` of the chirp period.
 
     Each part is first-differenced along the chirps (the body, demodulated to 0 Hz, and the clutter taken out), its
     power divided by its median over the dwell (what leaks into one part more than another, the same in every
@@ -372,3 +375,51 @@ def _ramp_overlap(start, length, ramp_share):
     end = start + length
     inside = np.clip(np.minimum(end, ramp_share) - start, 0.0, None) + np.clip(end - 1.0, 0.0, ramp_share)
     return inside / length
+
+
+def sides_alternate(sides, flash_period_chirps):
+    """Whether blade flashes every ``flash_period_chirps`` alternate between the two range sides of the target
+    (``sides`` (n_chirps, 2): the body-demodulated slow time ``SIDE_BINS`` below and above its bin,
+    :func:`mdpipe.process.ranging.flash_views`): an odd blade count's.
+
+    A blade's Doppler shift moves its beat, the approaching blade's one way, the receding one's the other. Equal
+    blades of an odd N flash one side at a time: an approaching blade, then, half a chopping period later, a
+    receding one; an even N's flash on both at once. Each side's power (first-differenced, standardised) then
+    repeats every second flash and not at the next, and the two sides' powers correlate one flash apart and not
+    at once: each of those repeats stands ``SIDE_SIGMAS`` robust sigmas (of the correlations over the lags from a
+    quarter flash period to three), and what would be there for flashes on both sides at once holds under
+    ``SIDE_SHARE`` of it. Where the beat moves little (under a bin at X band) each side sees both blades and the
+    sides tell nothing: flashes on both sides at once are never concluded (an even N is not told from that).
+    Measured on 3-blade rotors at K, 77 and 94 GHz: each side at the next flash 0.0-0.19 of its repeat at the
+    second, the sides one flash apart 4-27 sigmas and at once under 1; 2-blade rotors' sides repeated at the next
+    flash 0.8-1.8 times the second.
+    """
+    lag = float(flash_period_chirps)
+    n = sides.shape[0] - 1
+    last = int(np.ceil(3 * lag)) + 2
+    if lag < 2 or last >= n // 2:
+        return False
+    power = np.abs(np.diff(sides, axis=0)) ** 2
+    std = power.std(axis=0)
+    if not np.all(std > 0):
+        return False
+    power = (power - power.mean(axis=0)) / std
+    size = 1 << int(np.ceil(np.log2(2 * n)))
+    spectra = np.fft.rfft(power, size, axis=0)
+
+    def correlation(a, b):
+        return np.fft.irfft(spectra[:, a] * np.conj(spectra[:, b]), size)[:last + 1] / n
+
+    def at(r, l):
+        return float(np.max(r[max(int(np.floor(l)) - 1, 0):int(np.ceil(l)) + 2]))
+
+    lo, hi, across, back = correlation(0, 0), correlation(1, 1), correlation(0, 1), correlation(1, 0)
+    sigma = robust_sigma(np.concatenate([r[int(lag / 4):] for r in (lo, hi, across, back)]))
+    if not sigma > 0:
+        return False
+    apart, together = max(at(across, lag), at(back, lag)), max(at(across, 0), at(back, 0))
+    for own in (lo, hi):
+        second, next_ = at(own, 2 * lag), at(own, lag)
+        if second < SIDE_SIGMAS * sigma or next_ > SIDE_SHARE * second:
+            return False
+    return apart >= SIDE_SIGMAS * sigma and together <= SIDE_SHARE * apart

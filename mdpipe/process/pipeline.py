@@ -84,14 +84,15 @@ def target_signals(reader, stats, tracks, process):
             for i, (track_bins, gain, weight) in enumerate(zip(bins, gains, weights))]
 
 
-def ramp_parts(reader, track_bins, weight, process):
-    """A cached callable: the target's slow time in ``flashes.RAMP_PARTS`` parts of every ramp
-    (:func:`mdpipe.process.ranging.ramp_segments`), read from the open capture on its first call only: the
-    features ask for it only where a path reads the echo's power period or flash times stay ambiguous (one more
-    pass over the capture)."""
-    return functools.cache(lambda: ranging.ramp_segments(reader, track_bins, weight, segments=flashes.RAMP_PARTS,
-                                                         window=process.range_window, zero_pad=process.zero_pad,
-                                                         chunk_chirps=process.chunk_chirps))
+def flash_views(reader, track_bins, weight, process):
+    """A cached callable: the target's :class:`~mdpipe.process.ranging.FlashViews` (``flashes.RAMP_PARTS`` parts of
+    every ramp, and the range sides ``flashes.SIDE_BINS`` bins off its track), read from the open capture on its
+    first call only: the features ask for it only where a path reads the echo's power period or flash times stay
+    ambiguous (one more pass over the capture)."""
+    return functools.cache(lambda: ranging.flash_views(reader, track_bins, weight, segments=flashes.RAMP_PARTS,
+                                                       side_bins=flashes.SIDE_BINS * process.zero_pad,
+                                                       window=process.range_window, zero_pad=process.zero_pad,
+                                                       chunk_chirps=process.chunk_chirps))
 
 
 def _base_row(path, stats, process, params):
@@ -166,7 +167,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
                                       noise_power=noise, params=process,
                                       track=None if detection.fixed_bin is not None else track,  # fixed: no track
-                                      ramp_parts=ramp_parts(reader, track_bins, weight, process),
+                                      flash_views=flash_views(reader, track_bins, weight, process),
                                       ramp_share=params.ramp_up_s / params.chirp_period_s)
             range_min_m, range_max_m = float(track.range_m.min()), float(track.range_m.max())
             row = _base_row(path, stats, process, params)

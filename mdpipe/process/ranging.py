@@ -345,28 +345,47 @@ def slow_time(reader, tracks, weights, *, window="hann", zero_pad=1, chunk_chirp
     return out
 
 
-def ramp_segments(reader, track_bins, weight, *, segments, window="hann", zero_pad=1, chunk_chirps=256):
-    """Pass 2b: a target's slow time in each of ``segments`` equal parts of every ramp: complex
-    (n_chirps, segments), V.
+@dataclass(frozen=True)
+class FlashViews:
+    """A target's slow time seen two more ways (:func:`flash_views`): ``parts`` (n_chirps, S), each of S equal
+    parts of every ramp; ``sides`` (n_chirps, 2), the whole ramp at the track's bin less and more ``side_bins``."""
 
-    Each part of the IF is windowed on its own (``window`` of its length) and transformed at the track's bin
-    (``track_bins``, padded grid, its mean over each read), the channels combined with ``weight`` (C,). The parts
-    see the range ``segments`` times coarser; they tell where in the ramp a flash shorter than a chirp fell,
-    which the whole ramp's transform (one sample per chirp) does not.
+    parts: np.ndarray
+    sides: np.ndarray
+
+
+def flash_views(reader, track_bins, weight, *, segments, side_bins, window="hann", zero_pad=1, chunk_chirps=256):
+    """Pass 2b: the slow time that tells blade flashes apart, one more read of the capture: a
+    :class:`FlashViews`, V.
+
+    * Parts: each of ``segments`` equal parts of the IF is windowed on its own (``window`` of its length) and
+      transformed at the track's bin (``track_bins``, padded grid, its mean over each read). They see the range
+      ``segments`` times coarser; they tell where in the ramp a flash shorter than a chirp fell, which the whole
+      ramp's transform (one sample per chirp) does not.
+    * Sides: the whole ramp transformed ``side_bins`` (padded grid) below and above the track's bin. A blade's
+      Doppler shift moves its beat (f_D N / fs bins, the approaching blade's down, the receding one's up): the two
+      sides weigh the two blades of a flash unequally.
+
+    The channels are combined with ``weight`` (C,).
     """
     params = reader.params
     n = params.n_samples
     length = n // segments
     taper = range_window(window, length)
-    out = np.empty((reader.n_chirps, segments), dtype=np.complex64)
+    whole = range_window(window, n)
+    m = np.arange(n)
     centre = (n - 1) / 2
+    parts = np.empty((reader.n_chirps, segments), dtype=np.complex64)
+    sides = np.empty((reader.n_chirps, 2), dtype=np.complex64)
     for first, block in reader.iter_chunks(chunk_chirps=chunk_chirps):
         stop = first + block.shape[0]
-        cycles = float(np.mean(track_bins[first:stop])) / (zero_pad * n)  # the beat, cycles per sample
-        kernel = np.zeros((segments, n), dtype=np.complex64)
+        track = float(np.mean(track_bins[first:stop]))
+        kernel = np.zeros((segments + 2, n), dtype=np.complex64)
         for s in range(segments):
-            m = np.arange(s * length, (s + 1) * length)
-            kernel[s, m] = taper * np.exp(2j * np.pi * cycles * (m - centre))
-        out[first:stop] = np.einsum("mcn,sn,c->ms", block, kernel, np.asarray(weight, dtype=np.complex64),
-                                    optimize=True)
-    return out
+            inside = m[s * length:(s + 1) * length]
+            kernel[s, inside] = taper * np.exp(2j * np.pi * track / (zero_pad * n) * (inside - centre))
+        for i, offset in enumerate((-side_bins, side_bins)):
+            kernel[segments + i] = whole * np.exp(2j * np.pi * (track + offset) / (zero_pad * n) * (m - centre))
+        views = np.einsum("mcn,sn,c->ms", block, kernel, np.asarray(weight, dtype=np.complex64), optimize=True)
+        parts[first:stop], sides[first:stop] = views[:, :segments], views[:, segments:]
+    return FlashViews(parts, sides)
