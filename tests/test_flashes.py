@@ -148,10 +148,10 @@ def test_a_speckled_echo_is_not_flashes():
 RAMP_SHARE = 0.8  # the ramp's share of the chirp period: flashes in the other fifth go unseen
 
 
-def _ramp_parts(period_chirps, *, n_chirps=6000, phase_chirps=0.3, amplitude=6.0, wander=0.0, parts=4, seed=3):
+def _ramp_parts(period_chirps, *, n_chirps=6000, phase_chirps=0.3, amplitude=6.0, wander=0.0, parts=8, seed=3):
     """A flash train resolved within the ramp: flash j at ``phase + j period (1 + wander sin(2 pi j / J))`` (chirps,
     J flashes in all) lands, whole, in the part of its chirp's ramp that holds it, or nowhere when it falls between
-    ramps; unit complex noise in every part. Each flash is shorter than a part (0.2 chirp)."""
+    ramps; unit complex noise in every part. Each flash is shorter than a part (0.1 chirp)."""
     rng = np.random.default_rng(seed)
     x = (rng.standard_normal((n_chirps, parts)) + 1j * rng.standard_normal((n_chirps, parts))) / np.sqrt(2)
     j = np.arange(int(n_chirps / period_chirps) - 1)
@@ -207,3 +207,39 @@ def test_flashes_alternating_range_sides_tell_an_odd_blade_count():
     assert not flashes.sides_alternate(_sides(40.0, alternate=False), 40.0)
     assert not flashes.sides_alternate(_sides(40.0, alternate=True, both=True), 40.0)
     assert not flashes.sides_alternate(_sides(40.0, alternate=True, amplitude=0.0), 40.0)
+
+
+def test_a_power_period_three_flashes_long_is_settled_at_the_flashes():
+    """Flashes every 25 chirps that whole ramps read as repeating whole at 75: within the ramp 75 is not whole (a
+    repeat at 25), 37.5 cannot be told (no repeat there, and none expected of a train every 25), 25 is whole: the
+    search goes on past a period it cannot tell."""
+    from mdpipe.process.features import resolved_in_ramp
+    train = flashes.ramp_train(_ramp_parts(25.0, wander=0.003), ramp_share=RAMP_SHARE, prf_hz=PRF_HZ)
+    settled = resolved_in_ramp(flashes.PowerPeriod(75.0 / PRF_HZ, True), lambda: train, prf_hz=PRF_HZ)
+    assert settled.whole and settled.period_s * PRF_HZ == pytest.approx(25.0)
+
+
+def test_a_ramp_sampled_over_too_little_of_the_chirp_settles_nothing():
+    """A ramp sampled over 0.4 of the chirp leaves most flashes unseen wherever they fall: no ramp train."""
+    assert flashes.ramp_train(_ramp_parts(37.5), ramp_share=0.4, prf_hz=PRF_HZ) is None
+
+
+def test_a_partial_repeat_within_a_period_is_not_taken_for_the_flashes():
+    """A rotor whose period of 75 chirps holds one bright flash and, a third and two thirds of a period later, two
+    dim ones (point blades' grating flashes): within the ramp it repeats whole at 75, and its third, though nothing
+    repeats within it and its multiples lie on it, repeats with a fraction of that (bright with dim flashes): the
+    power period 75 whole from whole ramps stays 75, not 25."""
+    from mdpipe.process.features import resolved_in_ramp
+    rng = np.random.default_rng(11)
+    n_chirps, parts, period = 6000, 8, 75.0
+    x = (rng.standard_normal((n_chirps, parts)) + 1j * rng.standard_normal((n_chirps, parts))) / np.sqrt(2)
+    j = np.arange(int(n_chirps / period) - 1)
+    for offset, amplitude in ((0.0, 8.0), (period / 3, 3.0), (2 * period / 3, 3.0)):
+        for t in 0.3 + offset + j * period * (1 + 0.003 * np.sin(2 * np.pi * j / len(j))):
+            chirp, within = int(t), t % 1.0
+            if within < RAMP_SHARE and chirp < n_chirps:
+                x[chirp, int(within / RAMP_SHARE * parts)] += amplitude * np.exp(2j * np.pi * rng.uniform())
+    train = flashes.ramp_train(x, ramp_share=RAMP_SHARE, prf_hz=PRF_HZ)
+    assert flashes.ramp_repeat(train, 25.0) < flashes.RAMP_SETTLE_SHARE * flashes.ramp_repeat(train, 75.0)
+    settled = resolved_in_ramp(flashes.PowerPeriod(75.0 / PRF_HZ, True), lambda: train, prf_hz=PRF_HZ)
+    assert settled.period_s * PRF_HZ == pytest.approx(75.0)

@@ -1,4 +1,5 @@
-"""Parts of the ramp: a tone present in one part of every chirp shows in that part's transform only."""
+"""The flash views of a target: a tone in one part of every chirp shows in that part's transform only; a tone off
+the track's bin in the side it lies on; what every chirp holds alike (static clutter) in none."""
 
 from types import SimpleNamespace
 
@@ -23,13 +24,15 @@ class _Chirps:
 
 def test_a_tone_in_one_part_of_the_ramp_shows_in_that_part():
     """A real tone at bin 20.0 of 128 samples, 1 V, in samples 64-95 (the third of four parts) of every chirp, on
-    the second of two channels: the third part's Hann-windowed DFT at bin 20 reads sum(w) / 2 = 7.75 (the
+    the second of two channels, its phase turning once over the 10 chirps (a mover: the mean chirp, static
+    clutter, holds none of it): the third part's Hann-windowed DFT at bin 20 reads sum(w) / 2 = 7.75 (the
     positive-frequency half of a real tone), the other parts, which hold none of its samples, nothing (a part
     reaching into its neighbour's samples would read some)."""
     n, chirps = 128, 10
     data = np.zeros((chirps, 2, n), dtype=np.float32)
     samples = np.arange(n)
-    data[:, 1, 64:96] = np.cos(2 * np.pi * 20.0 * samples[64:96] / n)
+    for k in range(chirps):
+        data[k, 1, 64:96] = np.cos(2 * np.pi * 20.0 * samples[64:96] / n + 2 * np.pi * k / chirps)
     parts = ranging.flash_views(_Chirps(data), np.full(chirps, 20.0), np.array([0.0, 1.0]), segments=4,
                                 side_bins=1.5, chunk_chirps=4).parts
     assert parts.shape == (chirps, 4)
@@ -38,12 +41,24 @@ def test_a_tone_in_one_part_of_the_ramp_shows_in_that_part():
 
 
 def test_the_range_sides_weigh_a_tone_by_its_offset():
-    """The same tone over the whole ramp, at bin 21.5: the upper side (20 + 1.5) reads sum(w) / 2 = 31.75 of a
-    128-sample Hann window, the lower one (18.5, three bins off) its leakage only (under 1 %)."""
+    """A tone over the whole ramp at bin 21.5, its phase turning once over the 6 chirps: the upper side
+    (20 + 1.5) reads sum(w) / 2 = 31.75 of a 128-sample Hann window, the lower one (18.5, three bins off) its
+    leakage only (under 1 %)."""
     n, chirps = 128, 6
     data = np.zeros((chirps, 1, n), dtype=np.float32)
-    data[:, 0, :] = np.cos(2 * np.pi * 21.5 * np.arange(n) / n)
+    for k in range(chirps):
+        data[k, 0, :] = np.cos(2 * np.pi * 21.5 * np.arange(n) / n + 2 * np.pi * k / chirps)
     views = ranging.flash_views(_Chirps(data), np.full(chirps, 20.0), np.array([1.0]), segments=4, side_bins=1.5,
                                 chunk_chirps=4)
     assert np.abs(views.sides[:, 1]) == pytest.approx(np.hanning(n).sum() / 2, rel=1e-3)
     assert np.all(np.abs(views.sides[:, 0]) < 1e-2 * np.abs(views.sides[:, 1]))
+
+
+def test_what_every_chirp_holds_alike_is_taken_out():
+    """A tone identical in every chirp (static clutter at bin 20) leaves nothing in the parts or the sides."""
+    n, chirps = 128, 8
+    data = np.zeros((chirps, 1, n), dtype=np.float32)
+    data[:, 0, :] = 5.0 * np.cos(2 * np.pi * 20.0 * np.arange(n) / n + 0.3)
+    views = ranging.flash_views(_Chirps(data), np.full(chirps, 20.0), np.array([1.0]), segments=8, side_bins=1.5,
+                                chunk_chirps=3)
+    assert np.abs(views.parts).max() < 1e-4 and np.abs(views.sides).max() < 1e-4

@@ -17,8 +17,8 @@ from mdpipe.process import combs, doppler, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import moving_average, running_median
-from mdpipe.process.flashes import (PowerPeriod, flash_period, power_period, ramp_repeats_whole, ramp_train,
-                                    sides_alternate)
+from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period, power_period, ramp_repeat,
+                                    ramp_repeats_whole, ramp_train, sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, flap_glide_share, wingbeat
@@ -397,18 +397,20 @@ def demodulated_parts(parts, track_hz, *, prf_hz):
 
 def _settled_in_ramp(ramp, period_chirps, divisors, *, prf_hz):
     """The first of ``period_chirps / k`` (k in ``divisors``) at which the echo resolved within the ramp
-    (``ramp()``) repeats whole, in chirps; None when ``ramp`` is None, or it settles none. Each is tested only
-    after the one before it was found not whole (a shorter repeat seen): a period the ramp cannot tell stops the
-    search."""
-    if ramp is None:
+    (``ramp()``, or None: none) repeats whole, in chirps, else None. One the ramp cannot tell does not stop the
+    search (flashes every 25 chirps, whole ramps repeating at 75: 37.5 cannot be told, 25 is whole). A period / k
+    is tried only where it repeats with ``flashes.RAMP_SETTLE_SHARE`` of the period's repeat: a partial repeat
+    within a period (grating flashes of point blades a third of it apart, 0.63 of it) is not one."""
+    if ramp is None or ramp() is None:
         return None
     shortest = prf_hz / combs.MAX_CHOP_HZ
     for divisor in divisors:
-        whole = ramp_repeats_whole(ramp(), period_chirps / divisor, shortest_chirps=shortest)
-        if whole:
-            return period_chirps / divisor
-        if whole is None:
-            return None
+        candidate = period_chirps / divisor
+        if candidate < shortest or (divisor > 1 and not ramp_repeat(ramp(), candidate)
+                                    >= RAMP_SETTLE_SHARE * ramp_repeat(ramp(), period_chirps)):
+            continue  # flashes resolved within the ramp repeat alike at their period and its multiples
+        if ramp_repeats_whole(ramp(), candidate, shortest_chirps=shortest):
+            return candidate
     return None
 
 
@@ -423,7 +425,7 @@ def resolved_in_ramp(found, ramp, *, prf_hz):
     taken as whole (:func:`~mdpipe.process.flashes.ramp_repeats_whole`); one found not whole there, a shorter
     repeat seen, is not; where the ramp cannot tell, ``found`` stands.
     """
-    if found is None or ramp is None:
+    if found is None or ramp is None or ramp() is None:
         return found
     period = found.period_s * prf_hz
     verdict = ramp_repeats_whole(ramp(), period, shortest_chirps=prf_hz / combs.MAX_CHOP_HZ)
@@ -609,8 +611,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             else:
                 chopping_hz, ratio = np.array([timed_hz]), 1.0
         if _agrees(ratio):
-            if aliased and (held := _flashes_missed(power(), timed_hz,
-                                                    n_blades=n_blades if n_blades is not None else measured_n)):
+            odd_shown = ASSUMED_ODD_BLADES if alternating else None  # flashes alternating range sides
+            if aliased and (held := _flashes_missed(power(), timed_hz, n_blades=next(
+                    (n for n in (n_blades, measured_n, odd_shown) if n is not None), None))):
                 return held
             if len(chopping_hz) == 1:
                 chopping_hz = np.array([timed_hz])
@@ -787,7 +790,8 @@ def _flashes_missed(found, timed_hz, *, n_blades):
     that a folded comb repeats: the flash times then caught every k-th flash only, as comb and flash times do when
     the PRF is a whole multiple of the chopping over k. Four rotors chopping at 141.3 Hz sampled at PRF / 44.5
     left comb and flash times at 70.7 Hz, the power (resolved within the ramp) whole at 141.2 Hz. An odd blade
-    count (``n_blades``, given or measured) flashes twice per chopping period: k = 2 is then its own. Else None."""
+    count (``n_blades``: given, measured, or shown by flashes alternating range sides) flashes twice per chopping
+    period: k = 2 is then its own. Else None."""
     if found is None or not found.whole:
         return None
     ratio = 1.0 / found.period_s / timed_hz
@@ -1052,7 +1056,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     flash_views : callable or None
         Returns the target's :class:`~mdpipe.process.ranging.FlashViews` (its slow time in parts of every ramp and
         at its range sides; :func:`mdpipe.process.pipeline.flash_views`), called only where a path reads the echo's
-        power period or leaves flash times ambiguous; ``ramp_share``: the ramp's share of the chirp period.
+        power period or leaves flash times ambiguous; ``ramp_share``: the sampled part of the ramp's share of the
+        chirp period.
     """
     dwell_s = len(signal) / prf_hz
     s = np.asarray(signal, dtype=np.complex128)
@@ -1068,7 +1073,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     ramp = sides = None
     if flash_views is not None:
         ramp = functools.cache(lambda: ramp_train(demodulated_parts(flash_views().parts, body.track_hz, prf_hz=prf_hz),
-                                                  ramp_share=ramp_share, prf_hz=prf_hz))
+                                                  ramp_share=ramp_share, prf_hz=prf_hz))  # None: too short a ramp
         sides = functools.cache(lambda: demodulated_parts(flash_views().sides, body.track_hz, prf_hz=prf_hz))
     turn = rotation(body.demodulated, aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                     noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s,

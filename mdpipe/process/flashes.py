@@ -66,11 +66,16 @@ RESOLVED_SIGMAS = 8.0       # ... read only on a peak this many standard errors 
                             # trains' peaks at 6.1 and 6.6 standard errors, both read at a multiple of the flashes')
 AROUND = 0.03               # a lag period / k is looked for within +-3 %
 RAMP_PARTS = 8              # the ramp is cut in this many parts to see where in it a flash falls
-RAMP_SUB_SHARE = 0.5        # resolved within the ramp, a flash period repeats with this share of a multiple's or more
-                            # (0.77-0.96 in trains the whole ramps read at 2 and 3 flash periods) ...
-RAMP_SEEN_SHARE = 0.75      # ... where at least this share of the times it puts flashes at fall within a ramp
-RAMP_VISIBLE_SIGMAS = 4.0   # ... and the repeat those would show stands this many sigmas
-RAMP_PROFILE_SHARE = 0.01   # where in the ramp the flashes fall: read from the parts' top 1 % of power
+RAMP_SUB_SHARE = 0.5        # resolved within the ramp, a flash period repeats with this share of what its seen flashes
+                            # would show or more (0.77-0.96 of a multiple's in trains the whole ramps read at 2 and 3
+                            # flash periods, four fifths of them seen) ...
+RAMP_VISIBLE_SIGMAS = 4.0   # ... read where that stands this many sigmas
+RAMP_MIN_SHARE = 0.5        # a ramp sampled over less of the chirp is not read in parts (half the flashes unseen)
+RAMP_SETTLE_SHARE = 0.75    # a period / k taken for a period only where it repeats with this share of the period's
+                            # (flashes resolved within the ramp repeat alike at their period and its multiples; point
+                            # blades' grating flashes a third of a period apart repeated with 0.63 of it)
+RAMP_MIN_PAIRS = 0.5        # a lag is read where it pairs half as many parts as lag 0 or more
+RAMP_MAX_SLOTS = 2 ** 19    # the grid of parts read at most (a bounded memory: about 160 B a slot, 84 MB)
 SIDE_BINS = 1.5             # the range sides of a target read this many bins below and above its bin ...
 SIDE_SIGMAS = 4.0           # ... their repeats that tell flashes alternating sides stand this many sigmas ...
 SIDE_SHARE = 0.3            # ... and what flashes on both sides at once would add holds under this share of them
@@ -269,12 +274,15 @@ class RampTrain:
     seen: np.ndarray
     slot_chirps: float
     ramp_share: float
-    profile: np.ndarray  # the flashes' power in each part of the ramp over the dwell (:func:`ramp_train`)
+    part: np.ndarray  # each slot's part of the ramp (0 .. S - 1), -1 between ramps
 
 
 def ramp_train(parts, *, ramp_share, prf_hz):
     """:class:`RampTrain` of ``parts`` (n_chirps, S): the body-demodulated slow time of each of S equal parts of
-    the ramp (:func:`mdpipe.process.ranging.flash_views`), the ramp ``ramp_share`` of the chirp period.
+    the ramp (:func:`mdpipe.process.ranging.flash_views`), the ramp's sampled part ``ramp_share`` of the chirp
+    period; None where that is under ``RAMP_MIN_SHARE`` (flashes between ramps could hide any shorter period:
+    nothing would be settled) or the parts hold under 3 chirps. Of a long capture only the first
+    ``RAMP_MAX_SLOTS`` parts' length is read (a bounded grid).
 
     Each part is first-differenced along the chirps (the body, demodulated to 0 Hz, and the clutter taken out), its
     power divided by its median over the dwell (what leaks into one part more than another, the same in every
@@ -282,31 +290,32 @@ def ramp_train(parts, *, ramp_share, prf_hz):
     slower than any flash period read (``MAX_POWER_PERIOD_S``: the target crossing the range bin, the rotors'
     phases drifting through each other) would otherwise raise the power's correlation at every lag."""
     n_chirps, n_parts = parts.shape
-    power = np.abs(np.diff(parts, axis=0)) ** 2
-    # where in the ramp the flashes fall: each part's power over the capture's top RAMP_PROFILE_SHARE (short and
-    # few, the flashes hold it)
-    top = np.quantile(power, 1 - RAMP_PROFILE_SHARE)
-    profile = np.sum(np.maximum(power - top, 0.0), axis=0)
+    if ramp_share < RAMP_MIN_SHARE or n_chirps < 3:
+        return None
+    n_chirps = min(n_chirps, int(RAMP_MAX_SLOTS * ramp_share / n_parts))
+    power = np.abs(np.diff(parts[:n_chirps], axis=0)) ** 2
     power = power / np.maximum(np.median(power, axis=0), np.finfo(float).tiny)  # each part's own level
     slot = ramp_share / n_parts
     index = np.floor(np.arange(n_chirps - 1)[:, None] / slot + np.arange(n_parts)[None, :] + 0.5).astype(int).ravel()
     grid, seen = np.zeros(index.max() + 1), np.zeros(index.max() + 1, dtype=bool)
     grid[index], seen[index] = power.ravel(), True
+    part = np.full(len(grid), -1, dtype=np.int16)
+    part[index] = np.broadcast_to(np.arange(n_parts), power.shape).ravel()
     size = max(1, int(round(RAMP_DETREND_S * prf_hz / slot)))
     local = moving_average(grid, size) / np.maximum(moving_average(seen.astype(float), size), 1e-12)
-    return RampTrain(np.where(seen, grid - local, 0.0), seen, slot, ramp_share, profile)
+    return RampTrain(np.where(seen, grid - local, 0.0), seen, slot, ramp_share, part)
 
 
 def _masked_autocorrelation(x, seen, max_lag):
     """Autocorrelation of ``x`` over the samples ``seen`` (mean removed, each lag averaged over its pairs of seen
-    samples), 1 at lag 0, lags 0 .. max_lag."""
+    samples), 1 at lag 0, lags 0 .. max_lag; NaN at lags with under ``RAMP_MIN_PAIRS`` of lag 0's pairs (a lag
+    that falls from ramps into the gaps between them more often than not: averaged over few products)."""
     v = np.where(seen, x - np.mean(x[seen]), 0.0)
-    m = seen.astype(float)
     size = 1 << int(np.ceil(np.log2(2 * len(x))))
     products = np.fft.irfft(np.abs(np.fft.rfft(v, size)) ** 2, size)[:max_lag + 1]
-    pairs = np.fft.irfft(np.abs(np.fft.rfft(m, size)) ** 2, size)[:max_lag + 1]
-    r = products / np.maximum(np.round(pairs), 1.0)
-    return r / r[0] if r[0] > 0 else r
+    pairs = np.round(np.fft.irfft(np.abs(np.fft.rfft(seen.astype(float), size)) ** 2, size)[:max_lag + 1])
+    r = np.where(pairs >= RAMP_MIN_PAIRS * pairs[0], products / np.maximum(pairs, 1.0), np.nan)
+    return r / r[0] if r[0] > 0 else np.where(np.isnan(r), np.nan, 0.0)
 
 
 def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
@@ -324,49 +333,78 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
 
     * the repeat at the period (its best within +-``AROUND``) stands ``POWER_SIGMAS`` robust sigmas of the
       autocorrelation over the lags read;
-    * no ``period / k`` repeats with ``RAMP_SUB_SHARE`` of the period's repeat (else False), where flashes would
-      show the share of them that falls within a ramp (``RAMP_SEEN_SHARE`` or more) times it, and that stands
-      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise). Rotors a
-      phase apart repeat in part at many lags (0.3-0.45 of the period's in a hexarotor);
+    * no ``period / k`` repeats with ``RAMP_SUB_SHARE`` of the period's repeat (else False; rotors a phase apart
+      repeat in part at many lags, 0.3-0.45 of the period's in a hexarotor), nor with that share of what flashes
+      there would show, the share of them that falls within a ramp times the period's repeat, which must stand
+      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise);
     * the power's strongest peak past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it
       (else False);
     * the share within a ramp is that of the times ``i period / k`` after the power's flashes that falls within
-      a ramp, each flash anywhere in its part (the parts weighed by ``RampTrain.profile``): flashes that drift
-      through the ramp put 0.8 of them there for a ramp 0.8 of the chirp; flashes held at one place, none or all,
-      or, where their part's times straddle the gap, some: it takes three quarters.
+      a ramp, each flash anywhere in its part (the parts weighed by :func:`_pair_profile`): flashes that drift
+      through the ramp put about 0.8 of them there for a ramp 0.8 of the chirp; flashes held at one place none or
+      all, or, where their part's times straddle the gap, some.
     """
     lag = period_chirps / train.slot_chirps
     last = int(np.ceil(WHOLE_SPAN * lag)) + 2
     if last >= len(train.power) // 2:
         return None
     r = _masked_autocorrelation(train.power, train.seen, last)
-    sigma = robust_sigma(r[int(lag / 4):last])
+    read = r[int(lag / 4):last]
+    sigma = robust_sigma(read[np.isfinite(read)]) if np.isfinite(read).sum() > 2 else 0.0
 
     def best(at):
         lo, hi = int(np.floor(at * (1 - AROUND))) - 1, int(np.ceil(at * (1 + AROUND))) + 1
-        return float(np.max(r[max(lo, 1):hi + 1]))
+        window = r[max(lo, 1):hi + 1]
+        return float(np.max(window[np.isfinite(window)])) if np.isfinite(window).any() else np.nan
 
     peak = best(lag)
-    if not sigma > 0 or peak < POWER_SIGMAS * sigma:
+    if not sigma > 0 or not peak >= POWER_SIGMAS * sigma:
         return None
+    peak_lag = int(np.nanargmax(np.where(np.abs(np.arange(len(r)) - lag) <= AROUND * lag + 1, r, np.nan)))
     later = local_maxima(r[int(1.5 * lag):last + 1]) + int(1.5 * lag)
     if len(later):
         strongest = later[np.argmax(r[later])] / lag
         if r[later].max() > peak and abs(strongest - round(strongest)) > WHOLE_TOLERANCE:
             return False
-    profile = train.profile  # where in the ramp the flashes fall
+    profile = _pair_profile(train, peak_lag)  # where in the ramp the repeating flashes fall
     if not profile.sum() > 0:
         return None
+    divisors = range(2, int(period_chirps / shortest_chirps) + 1)
+    subs = [best(lag / divisor) for divisor in divisors]
+    if any(sub >= RAMP_SUB_SHARE * peak for sub in subs):
+        return False
     starts = np.arange(len(profile)) * train.slot_chirps  # a flash lies anywhere in its part
-    for divisor in range(2, int(period_chirps / shortest_chirps) + 1):
+    for divisor, sub in zip(divisors, subs):
         shifted = (starts[:, None] + period_chirps / divisor * np.arange(1, divisor)) % 1.0
-        within = _ramp_overlap(shifted, train.slot_chirps, train.ramp_share)  # a flash anywhere in its part
-        seen = float(profile @ np.mean(within, axis=1) / profile.sum())
-        if best(lag / divisor) >= RAMP_SUB_SHARE * peak:
-            return False
-        if seen < RAMP_SEEN_SHARE or seen * peak < RAMP_VISIBLE_SIGMAS * sigma:  # what flashes there would show
-            return None
+        within = _ramp_overlap(shifted, train.slot_chirps, train.ramp_share)
+        expected = float(profile @ np.mean(within, axis=1) / profile.sum()) * peak  # what seen flashes would show
+        if np.isnan(sub) or expected < RAMP_VISIBLE_SIGMAS * sigma or sub >= RAMP_SUB_SHARE * expected:
+            return None  # flashes there could go unseen, or under the noise (or no pairs of parts that far apart)
     return True
+
+
+def ramp_repeat(train, period_chirps):
+    """How strongly the echo resolved within the ramp (``train``) repeats after ``period_chirps``: its power's
+    autocorrelation at its best within +-``AROUND`` (NaN where no lag there pairs enough parts)."""
+    lag = period_chirps / train.slot_chirps
+    hi = int(np.ceil(lag * (1 + AROUND))) + 1
+    if hi >= len(train.power) // 2:
+        return np.nan
+    r = _masked_autocorrelation(train.power, train.seen, hi)
+    window = r[max(int(np.floor(lag * (1 - AROUND))) - 1, 1):hi + 1]
+    return float(np.max(window[np.isfinite(window)])) if np.isfinite(window).any() else np.nan
+
+
+def _pair_profile(train, lag):
+    """Where in the ramp the power's repeat at ``lag`` slots lies: for each part, the sum of the products of the
+    power (its mean out) with itself ``lag`` later, over the slots of that part paired with a seen one, none
+    negative. Flashes that repeat put their products in the parts they fall in; noise's average out (the top of the
+    power, read instead, held a tenth of the flashes' share in every part)."""
+    seen = train.seen[:len(train.seen) - lag] & train.seen[lag:]
+    products = np.where(seen, train.power[:len(seen)] * train.power[lag:lag + len(seen)], 0.0)
+    n_parts = int(train.part.max()) + 1
+    sums = np.bincount(np.maximum(train.part[:len(seen)], 0), weights=products, minlength=n_parts)
+    return np.maximum(sums, 0.0)
 
 
 def _ramp_overlap(start, length, ramp_share):

@@ -10,11 +10,13 @@ from dataclasses import replace
 import numpy as np
 
 from mdpipe.errors import ParameterError
-from mdpipe.process import ranging
+from mdpipe.process import flashes, ranging
 
 GIB = 2**30
 PASS2_BINS_PER_TARGET = 64  # bins a target's path may cross (a bird at 15 m/s over 1 s at 0.23 m bins)
 ANALYSIS_BYTES_PER_CHIRP = 1024  # per target: complex128 copies and spectrograms of the slow-time signal
+FLASH_VIEW_BYTES = 40  # per chirp and view (parts of the ramp, range sides): complex64, complex128 demodulated, a stack
+RAMP_SLOT_BYTES = 160  # per slot of the ramp parts' grid: the grid, its mask and trend, the autocorrelation's FFTs
 BASE_BYTES = 64 * 2**20  # the interpreter, numpy, h5py and BLAS, before any array (measured: 55-60 MB)
 
 
@@ -50,7 +52,9 @@ def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_b
         sample and bin: complex128 exponential, its windowed copy, float64 real and imaginary parts
         and the float32 result) and the accumulators. Pass 2 reads ``ranging.READ_CHIRPS`` chirps per
         thread, transforms them at the grid columns the targets' tracks cross, and keeps each target's
-        slow time (bounded here by n_chirps x bins, complex64).
+        slow time (bounded here by n_chirps x bins, complex64). The analysis holds each target's copies and
+        spectrograms, and one target's flash views (``ranging.flash_views``) with their grid of ramp parts
+        (at most ``flashes.RAMP_MAX_SLOTS`` slots).
     """
     c, n = n_channels, n_samples
     k, b = gate_bin_counts(params, process)
@@ -72,7 +76,11 @@ def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_b
         else c * rows * n_bins * 8 * real)
     workers = min(ranging.WORKERS, -(-n_chirps // rows))
     pass2 = workers * per_thread + 2 * n_chirps * n_bins * 2 * real + 8 * params.n_samples * n_bins + reads
-    analysis = process.max_targets * n_chirps * ANALYSIS_BYTES_PER_CHIRP
+    # one target's flash views at a time (read only where the features ask), and its bounded grid of ramp parts
+    views = n_chirps * (flashes.RAMP_PARTS + 2) * FLASH_VIEW_BYTES
+    share = max(params.sampled_duration_s / params.chirp_period_s, flashes.RAMP_MIN_SHARE)
+    slots = min(n_chirps * flashes.RAMP_PARTS / share, flashes.RAMP_MAX_SLOTS)
+    analysis = process.max_targets * n_chirps * ANALYSIS_BYTES_PER_CHIRP + views + int(slots) * RAMP_SLOT_BYTES
     return {"pass 1": pass1, "pass 2": pass2, "analysis": analysis, "base": BASE_BYTES,
             "peak": max(pass1, pass2) + analysis + BASE_BYTES}
 

@@ -168,7 +168,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
                                       noise_power=noise, params=process,
                                       track=None if detection.fixed_bin is not None else track,  # fixed: no track
                                       flash_views=flash_views(reader, track_bins, weight, process),
-                                      ramp_share=params.ramp_up_s / params.chirp_period_s)
+                                      ramp_share=params.sampled_duration_s / params.chirp_period_s)
             range_min_m, range_max_m = float(track.range_m.min()), float(track.range_m.max())
             row = _base_row(path, stats, process, params)
             row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),

@@ -359,14 +359,17 @@ def flash_views(reader, track_bins, weight, *, segments, side_bins, window="hann
     :class:`FlashViews`, V.
 
     * Parts: each of ``segments`` equal parts of the IF is windowed on its own (``window`` of its length) and
-      transformed at the track's bin (``track_bins``, padded grid, its mean over each read). They see the range
-      ``segments`` times coarser; they tell where in the ramp a flash shorter than a chirp fell, which the whole
-      ramp's transform (one sample per chirp) does not.
+      transformed at the track's bin (``track_bins``, padded grid, its mean over each read), its phase referred
+      to the part's own middle sample (a window symmetric about it answers a tone in its main lobe with a real
+      gain: the bin's steps between reads change no phase). They see the range ``segments`` times coarser; they
+      tell where in the ramp a flash shorter than a chirp fell, which the whole ramp's transform (one sample per
+      chirp) does not.
     * Sides: the whole ramp transformed ``side_bins`` (padded grid) below and above the track's bin. A blade's
       Doppler shift moves its beat (f_D N / fs bins, the approaching blade's down, the receding one's up): the two
       sides weigh the two blades of a flash unequally.
 
-    The channels are combined with ``weight`` (C,).
+    The channels are combined with ``weight`` (C,); static clutter, the mean chirp's transform by the same
+    kernels, is taken out of every read, as :func:`slow_time` does.
     """
     params = reader.params
     n = params.n_samples
@@ -374,18 +377,41 @@ def flash_views(reader, track_bins, weight, *, segments, side_bins, window="hann
     taper = range_window(window, length)
     whole = range_window(window, n)
     m = np.arange(n)
-    centre = (n - 1) / 2
-    parts = np.empty((reader.n_chirps, segments), dtype=np.complex64)
-    sides = np.empty((reader.n_chirps, 2), dtype=np.complex64)
-    for first, block in reader.iter_chunks(chunk_chirps=chunk_chirps):
-        stop = first + block.shape[0]
-        track = float(np.mean(track_bins[first:stop]))
-        kernel = np.zeros((segments + 2, n), dtype=np.complex64)
+    weight = np.asarray(weight, dtype=np.complex64)
+    views = np.empty((reader.n_chirps, segments + 2), dtype=np.complex64)
+    total = np.zeros(n, dtype=np.complex128)
+
+    def side(bin_):
+        return whole * np.exp(2j * np.pi * bin_ / (zero_pad * n) * (m - (n - 1) / 2))
+
+    def kernels(first, stop):
+        """The parts' kernels at the read's mean track, and each side's at its nearest and farthest track with
+        each chirp's share between them: off the main lobe's peak the response's slope would turn a step of the
+        bin between reads into a step of the body's leak."""
+        track = np.asarray(track_bins[first:stop], dtype=np.float64)
+        kernel = np.zeros((segments + 4, n), dtype=np.complex64)
         for s in range(segments):
             inside = m[s * length:(s + 1) * length]
-            kernel[s, inside] = taper * np.exp(2j * np.pi * track / (zero_pad * n) * (inside - centre))
-        for i, offset in enumerate((-side_bins, side_bins)):
-            kernel[segments + i] = whole * np.exp(2j * np.pi * (track + offset) / (zero_pad * n) * (m - centre))
-        views = np.einsum("mcn,sn,c->ms", block, kernel, np.asarray(weight, dtype=np.complex64), optimize=True)
-        parts[first:stop], sides[first:stop] = views[:, :segments], views[:, segments:]
-    return FlashViews(parts, sides)
+            kernel[s, inside] = taper * np.exp(2j * np.pi * track.mean() / (zero_pad * n) * (inside - inside.mean()))
+        low, high = track.min(), track.max()
+        kernel[segments:] = [side(low - side_bins), side(high - side_bins), side(low + side_bins),
+                             side(high + side_bins)]
+        share = (track - low) / (high - low) if high > low else np.zeros_like(track)
+        return kernel, share[:, None].astype(np.float32)
+
+    def place(first, raw, share):
+        stop = first + len(share)
+        views[first:stop, :segments] += raw[..., :segments]
+        views[first:stop, segments:] += raw[..., segments::2] * (1 - share) + raw[..., segments + 1::2] * share
+
+    for first, block in reader.iter_chunks(chunk_chirps=chunk_chirps):
+        combined = np.tensordot(block, weight, axes=([1], [0]))  # (chirps, samples)
+        kernel, share = kernels(first, first + block.shape[0])
+        views[first:first + block.shape[0]] = 0
+        place(first, combined @ kernel.T, share)
+        total += combined.sum(axis=0)
+    mean = total / max(reader.n_chirps, 1)  # the mean chirp: static clutter, taken out by the same kernels
+    for first in range(0, reader.n_chirps, chunk_chirps):
+        kernel, share = kernels(first, min(first + chunk_chirps, reader.n_chirps))
+        place(first, -(kernel @ mean).astype(np.complex64), share)
+    return FlashViews(views[:, :segments], views[:, segments:])
