@@ -115,6 +115,8 @@ def fold_hz(doppler_hz, *, prf_hz):
 
 
 def demodulate(signal, doppler_hz, *, prf_hz):
-    """Remove a time-varying Doppler: multiply by ``exp(-j 2 pi integral f dt)``."""
+    """Remove a time-varying Doppler: multiply by ``exp(-j 2 pi integral f dt)``; ``signal`` (n_chirps, ...): its
+    first axis is time, any further axes (channels, ramp parts) share the phase."""
     phase = 2 * np.pi * np.cumsum(doppler_hz) / prf_hz
-    return signal * np.exp(-1j * phase).astype(np.complex64)
+    factor = np.exp(-1j * phase).astype(np.complex64)
+    return signal * factor.reshape(factor.shape + (1,) * (np.ndim(signal) - 1))

@@ -390,9 +390,7 @@ def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noi
 def demodulated_parts(parts, track_hz, *, prf_hz):
     """Each column of ``parts`` (slow time in ramp parts, or at range sides) demodulated by the body's Doppler
     track (None: as is)."""
-    if track_hz is None:
-        return parts
-    return np.stack([doppler.demodulate(column, track_hz, prf_hz=prf_hz) for column in parts.T], axis=1)
+    return parts if track_hz is None else doppler.demodulate(parts, track_hz, prf_hz=prf_hz)
 
 
 def _settled_in_ramp(ramp, period_chirps, divisors, *, prf_hz):
@@ -404,10 +402,11 @@ def _settled_in_ramp(ramp, period_chirps, divisors, *, prf_hz):
     if ramp is None or ramp() is None:
         return None
     shortest = prf_hz / combs.MAX_CHOP_HZ
+    reference = ramp_repeat(ramp(), period_chirps)
     for divisor in divisors:
         candidate = period_chirps / divisor
         if candidate < shortest or (divisor > 1 and not ramp_repeat(ramp(), candidate)
-                                    >= RAMP_SETTLE_SHARE * ramp_repeat(ramp(), period_chirps)):
+                                    >= RAMP_SETTLE_SHARE * reference):
             continue  # flashes resolved within the ramp repeat alike at their period and its multiples
         if ramp_repeats_whole(ramp(), candidate, shortest_chirps=shortest):
             return candidate
@@ -773,15 +772,22 @@ def _span_ambiguity(what, frequency_hz, *, prf_hz, dwell_s, power):
     span_orders = prf_hz / frequency_hz
     if abs(span_orders - round(span_orders)) * frequency_hz > 1.0 / dwell_s:
         return None
-    found = power()
-    if found is not None and found.whole:
-        ratio = 1.0 / found.period_s / frequency_hz
-        if round(ratio) >= 1 and _agrees(ratio, round(ratio)):
-            return None
+    if _whole_multiple(power(), frequency_hz) >= 1:
+        return None
     note = (f"rotation not estimable: the {what} at {frequency_hz:.4g} Hz, the PRF over {span_orders:.1f}: "
             "a whole multiple of it folds onto it, its flashes shorter than a chirp caught at some passages only; "
             "another PRF tells which")
     return Rotation.withheld("ambiguous_period", note)
+
+
+def _whole_multiple(found, frequency_hz):
+    """The whole k >= 1 at k times ``frequency_hz`` of which the echo's power (``found``, a
+    :class:`~mdpipe.process.flashes.PowerPeriod` or None) repeats whole, within ``AGREEMENT``; else 0."""
+    if found is None or not found.whole:
+        return 0
+    ratio = 1.0 / found.period_s / frequency_hz
+    k = round(ratio)
+    return k if k >= 1 and _agrees(ratio, k) else 0
 
 
 def _flashes_missed(found, timed_hz, *, n_blades):
@@ -792,15 +798,11 @@ def _flashes_missed(found, timed_hz, *, n_blades):
     left comb and flash times at 70.7 Hz, the power (resolved within the ramp) whole at 141.2 Hz. An odd blade
     count (``n_blades``: given, measured, or shown by flashes alternating range sides) flashes twice per chopping
     period: k = 2 is then its own. Else None."""
-    if found is None or not found.whole:
-        return None
-    ratio = 1.0 / found.period_s / timed_hz
-    if round(ratio) < 2 or not _agrees(ratio, round(ratio)):
-        return None
-    if round(ratio) == 2 and n_blades is not None and n_blades % 2:
+    k = _whole_multiple(found, timed_hz)
+    if k < 2 or (k == 2 and n_blades is not None and n_blades % 2):
         return None
     note = (f"rotation not estimable: the flash times and the folded line comb say {timed_hz:.4g} Hz and the echo's "
-            f"power repeats whole at {1.0 / found.period_s:.4g} Hz, {round(ratio)} times it: flashes shorter than a "
+            f"power repeats whole at {1.0 / found.period_s:.4g} Hz, {k} times it: flashes shorter than a "
             "chirp caught at some passages only; another PRF tells which")
     return Rotation.withheld("ambiguous_period", note)
 

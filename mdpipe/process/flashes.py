@@ -19,6 +19,7 @@ show in the autocorrelation of the echo's power, summed over every flash of the 
 amplitude pattern above repeats too, and a blade differing repeats once a turn).
 """
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -276,6 +277,12 @@ class RampTrain:
     ramp_share: float
     part: np.ndarray  # each slot's part of the ramp (0 .. S - 1), -1 between ramps
 
+    @functools.cached_property
+    def correlation(self):
+        """The power's autocorrelation over the seen slots, every lag (:func:`_masked_autocorrelation`): one FFT
+        however many periods are tried on it."""
+        return _masked_autocorrelation(self.power, self.seen, len(self.power) - 1)
+
 
 def ramp_train(parts, *, ramp_share, prf_hz):
     """:class:`RampTrain` of ``parts`` (n_chirps, S): the body-demodulated slow time of each of S equal parts of
@@ -348,16 +355,10 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     last = int(np.ceil(WHOLE_SPAN * lag)) + 2
     if last >= len(train.power) // 2:
         return None
-    r = _masked_autocorrelation(train.power, train.seen, last)
+    r = train.correlation[:last + 1]
     read = r[int(lag / 4):last]
     sigma = robust_sigma(read[np.isfinite(read)]) if np.isfinite(read).sum() > 2 else 0.0
-
-    def best(at):
-        lo, hi = int(np.floor(at * (1 - AROUND))) - 1, int(np.ceil(at * (1 + AROUND))) + 1
-        window = r[max(lo, 1):hi + 1]
-        return float(np.max(window[np.isfinite(window)])) if np.isfinite(window).any() else np.nan
-
-    peak = best(lag)
+    peak = _repeat_at(r, lag)
     if not sigma > 0 or not peak >= POWER_SIGMAS * sigma:
         return None
     peak_lag = int(np.nanargmax(np.where(np.abs(np.arange(len(r)) - lag) <= AROUND * lag + 1, r, np.nan)))
@@ -370,7 +371,7 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     if not profile.sum() > 0:
         return None
     divisors = range(2, int(period_chirps / shortest_chirps) + 1)
-    subs = [best(lag / divisor) for divisor in divisors]
+    subs = [_repeat_at(r, lag / divisor) for divisor in divisors]
     if any(sub >= RAMP_SUB_SHARE * peak for sub in subs):
         return False
     starts = np.arange(len(profile)) * train.slot_chirps  # a flash lies anywhere in its part
@@ -387,11 +388,15 @@ def ramp_repeat(train, period_chirps):
     """How strongly the echo resolved within the ramp (``train``) repeats after ``period_chirps``: its power's
     autocorrelation at its best within +-``AROUND`` (NaN where no lag there pairs enough parts)."""
     lag = period_chirps / train.slot_chirps
-    hi = int(np.ceil(lag * (1 + AROUND))) + 1
-    if hi >= len(train.power) // 2:
+    if int(np.ceil(lag * (1 + AROUND))) + 1 >= len(train.power) // 2:
         return np.nan
-    r = _masked_autocorrelation(train.power, train.seen, hi)
-    window = r[max(int(np.floor(lag * (1 - AROUND))) - 1, 1):hi + 1]
+    return _repeat_at(train.correlation, lag)
+
+
+def _repeat_at(r, lag):
+    """The autocorrelation ``r`` at its best within +-``AROUND`` (and a slot) of ``lag`` slots, NaN where none of
+    those lags is read."""
+    window = r[max(int(np.floor(lag * (1 - AROUND))) - 1, 1):int(np.ceil(lag * (1 + AROUND))) + 2]
     return float(np.max(window[np.isfinite(window)])) if np.isfinite(window).any() else np.nan
 
 
