@@ -280,3 +280,18 @@ def test_kept_share_of_a_body_under_mean_removal():
     sway = 30.0 + amplitude * np.sin(2 * np.pi * fine / 1.0)
     assert scoring.kept_share(fine, sway, wavelength_m=lam) == pytest.approx(1 - j0(4 * np.pi * amplitude / lam) ** 2,
                                                                               abs=1e-4)
+
+
+@pytest.mark.parametrize("beta", [1.0, 2.0, 5.0])
+def test_strongest_line_share_of_a_sinusoidal_fm(beta):
+    """``exp(j beta sin(2 pi f t))`` holds ``J_k(beta)^2`` of its power in the line at ``k f`` (each on a bin here):
+    the share read is the largest over ``k != 0``; the line at 0 Hz (``J_0(1)^2 = 0.59``, the largest at beta 1)
+    is the pattern's mean, not a line of its repeat."""
+    from scipy.special import jv
+    chirp_period_s, n_chirps, beat_hz = 1e-3, 4000, 5.0  # 0.25 Hz bins: the lines on bins 20 k
+    t_s = np.arange(n_chirps) * chirp_period_s
+    signal = np.exp(1j * beta * np.sin(2 * np.pi * beat_hz * t_s))
+    orders = np.arange(1, 20)
+    expected = float(np.max(jv(orders, beta) ** 2))
+    assert scoring.strongest_line_share(signal, chirp_period_s=chirp_period_s, spacing_hz=beat_hz) == \
+        pytest.approx(expected, rel=1e-6)

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from mdpipe.process import wingbeat
+from mdpipe.process.doppler import noise_level_per_bin, periodic_hann
 
 FRAME_RATE_HZ = 62.5  # a 16 ms hop
 WINDOW_S = 0.064      # 4 hops: the frames within 2 of a switch straddle it
@@ -51,7 +52,8 @@ def gated(spec):
 
 
 def period(spec):
-    return wingbeat._gated_period(spec, noise_level=1.0, frame_rate=FRAME_RATE_HZ)
+    frames = wingbeat.WingFrames(spec, noise_level=1.0, lit_db=wingbeat.SIGNAL_ROW_DB, off_hz=0.0, weak=False)
+    return wingbeat._gated_period(frames)
 
 
 def test_flapping_frames_are_the_bursts():
@@ -171,8 +173,10 @@ def test_a_fast_wingbeat_under_four_frames_is_read_again_in_shorter_frames():
     peak lies in the frames' own overlap; the first look read its double, 7.0 Hz. Read again in frames of a
     quarter of that (36 ms), the wingbeat is found."""
     echo, noise_power, band_hz = sparrow_echo(14.0, f0_hz=10e9, prf_hz=2000.0, dwell_s=2.0, snr_db=10.0, seed=0)
-    first, window_s = wingbeat._looks(echo, prf_hz=2000.0, noise_power=noise_power, frame_s=wingbeat.FRAME_S)
-    assert window_s == pytest.approx(0.064) and 1.0 / first.period_s == pytest.approx(7.0, rel=0.02)
+    frames = wingbeat.wing_frames(echo, prf_hz=2000.0, noise_power=noise_power, frame_s=wingbeat.FRAME_S)
+    first = wingbeat._looks(frames)
+    assert not frames.weak and frames.spec.window_s == pytest.approx(0.064)
+    assert 1.0 / first.period_s == pytest.approx(7.0, rel=0.02)
     found = wingbeat.wingbeat(echo, prf_hz=2000.0, noise_power=noise_power, band_hz=band_hz)
     assert 1.0 / found.period_s == pytest.approx(14.0, rel=0.02)
 
@@ -231,3 +235,86 @@ def test_wings_that_never_stop_do_not_glide():
     """Wings beating through the whole dwell (and rotors, which never stop): no glide."""
     echo, _ = glide_echo(flap_s=1.0, glide_s=1.0, dwell_s=4.0, glides=False)
     assert wingbeat.flap_glide_share(echo, prf_hz=GLIDE_PRF_HZ, noise_power=1e-4) is None
+
+
+WEAK_PRF_HZ = 2000.0
+WEAK_NOISE_LEVEL = noise_level_per_bin(1.0, 128)  # per bin of a 64 ms frame at 2 kHz, noise power 1 a chirp
+
+
+def weak_wings_echo(*, wing_cell_db, body_cell_db, flap_s=None, glide_s=None, dwell_s=4.0, seed=0):
+    """Noise of power 1 a chirp; a body line ``body_cell_db`` over the noise in a 64 ms frame's bin, 0.4 bin
+    (6.25 Hz) off 0 Hz (a track's residual); wings beating 3 Hz, five points along the span (a sinusoidal FM of
+    +-30 to +-150 Hz each, random phases: the wing reaches about 20 bins of a frame), their power
+    ``wing_cell_db`` over the noise per bin when shared evenly among 20 bins; flapping ``flap_s`` of every
+    ``flap_s + glide_s`` when given, else throughout."""
+    rng = np.random.default_rng(seed)
+    t_s = np.arange(int(dwell_s * WEAK_PRF_HZ)) / WEAK_PRF_HZ
+    body = np.sqrt(WEAK_NOISE_LEVEL * 10 ** (body_cell_db / 10)) * np.exp(2j * np.pi * 6.25 * t_s)
+    points = [np.exp(1j * (deviation_hz / 3.0 * np.sin(2 * np.pi * 3.0 * t_s) + phase))
+              for deviation_hz, phase in zip((30.0, 60.0, 90.0, 120.0, 150.0), rng.uniform(0, 2 * np.pi, 5))]
+    wings = np.sqrt(20 * WEAK_NOISE_LEVEL * 10 ** (wing_cell_db / 10) / 5) * np.sum(points, axis=0)
+    if flap_s is not None:
+        wings = wings * (np.mod(t_s, flap_s + glide_s) < flap_s)
+    noise = (rng.standard_normal(len(t_s)) + 1j * rng.standard_normal(len(t_s))) / np.sqrt(2)
+    return body + wings + noise
+
+
+def weak_frames(echo, weak=None):
+    return wingbeat.wing_frames(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0, frame_s=wingbeat.FRAME_S, weak=weak)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2, 3])
+def test_weak_wings_are_read_in_rows_of_four_bins(seed):
+    """Wings 3 dB over the noise per bin, a body line 25 dB: fewer than three wing rows of single bins are lit 10 dB
+    over the noise in a quarter of the frames (old code: no wingbeat). Averaged four bins at a time and lit 3 dB over it, the
+    wings' rows show their 3 Hz beat, and reach +-150 Hz (the outermost lit row's edge, within a row)."""
+    echo = weak_wings_echo(wing_cell_db=3.0, body_cell_db=25.0, seed=seed)
+    assert weak_frames(echo, weak=False).wing_rows() < wingbeat.MIN_WING_ROWS
+    assert weak_frames(echo).weak
+    found = wingbeat.wingbeat(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0)
+    assert found is not None and 1.0 / found.period_s == pytest.approx(3.0, rel=0.02)
+    reach_hz = wingbeat.wing_reach_hz(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0)
+    assert 150.0 - 4 * 15.625 <= reach_hz <= 150.0 + 4 * 15.625
+
+
+@pytest.mark.parametrize("body_cell_db", [25.0, 50.0])
+def test_a_body_line_alone_shows_no_weak_wings(body_cell_db):
+    """A body line 0.4 bin off 0 Hz and noise: its Hann sidelobes, -32 dB 2.5 bins off, light the bins next to its
+    main lobe at 50 dB (shown below: they would pass for wings); the averaged rows start where the leakage falls
+    10 dB under the noise, and none is lit."""
+    echo = weak_wings_echo(wing_cell_db=-np.inf, body_cell_db=body_cell_db)
+    frames = weak_frames(echo, weak=True)
+    assert frames.wing_rows() == 0
+    assert wingbeat.wing_reach_hz(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0) is None
+    if body_cell_db == 25.0:  # no single-bin row lit either: the weak look is read, and finds nothing
+        assert weak_frames(echo).weak and wingbeat.wingbeat(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0) is None
+    if body_cell_db == 50.0:  # the leakage is there to be left out: two bins (2.4 bins from the line) lit
+        spec = frames.spec
+        fine = weak_frames(echo, weak=False).spec
+        next_to_lobe = np.percentile(fine.power[np.argmin(np.abs(fine.f_hz - 2 * 15.625))], 75)
+        assert next_to_lobe > 10 ** (wingbeat.WEAK_ROW_DB / 10) * frames.noise_level
+        assert np.abs(spec.f_hz[spec.f_hz != 0]).min() > 2 * 15.625
+
+
+def test_noise_alone_reaches_nothing():
+    rng = np.random.default_rng(5)
+    noise = (rng.standard_normal(8000) + 1j * rng.standard_normal(8000)) / np.sqrt(2)
+    assert weak_frames(noise, weak=True).wing_rows() == 0
+    assert wingbeat.wing_reach_hz(noise, prf_hz=WEAK_PRF_HZ, noise_power=1.0) is None
+
+
+@pytest.mark.parametrize("offset_bins", [0.25, 0.5])
+def test_hann_leakage_bounds_a_tone_and_is_reached_half_a_bin_off(offset_bins):
+    """A tone ``offset_bins`` off a bin in a 64-point periodic Hann spectrum: every bin 1.5 bins or more from it
+    lies under the envelope; half a bin off, the bins reach it (-15.4 dB 1.5 bins off, -32.3 dB 2.5 bins off)."""
+    n = 64
+    window = periodic_hann(n)
+    tone = np.exp(2j * np.pi * offset_bins * np.arange(n) / n)
+    power = np.abs(np.fft.fft(tone * window) / window.sum()) ** 2
+    distance = np.abs(np.mod(np.arange(n) - offset_bins + n / 2, n) - n / 2)
+    far = distance >= 1.5
+    assert np.all(power[far] <= wingbeat.hann_leakage(distance[far]) * (1 + 1e-6))
+    if offset_bins == 0.5:
+        near = far & (distance <= 5.5)  # (further out, the 64 points' own periodicity adds to the transform)
+        assert power[near] / wingbeat.hann_leakage(distance[near]) == pytest.approx(1.0, abs=1e-3)
+        assert 10 * np.log10(wingbeat.hann_leakage(np.array([1.5, 2.5]))) == pytest.approx([-15.4, -32.3], abs=0.05)

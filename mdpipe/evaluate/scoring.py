@@ -22,7 +22,7 @@ import numpy as np
 from mdpipe.evaluate import range_share
 from mdpipe.physics import rotor
 from mdpipe.simulate.targets import module_of, target_echo
-from mdpipe.simulate.targets.bird import wing_speed_max_mps
+from mdpipe.simulate.targets.common import carrier
 
 FEATURES = ("chopping_freq_hz", "rotation_rate_hz", "blade_length_m", "wingbeat_freq_hz", "body_velocity_mps")
 TOLERANCE = 0.10             # a confident value more than 10 % off is wrong
@@ -44,8 +44,9 @@ class Physics:
 
     ``micro_line_snr_db`` is the SNR of one spectral line of the moving parts (blades, wings) after the
     range FFT (gain ``n_samples / 3``: a real IF's positive bin through a Hann window), coherent RX
-    combining (``n_channels``) and the dwell (``n_chirps``), the moving parts' power shared among the
-    lines that fill their Doppler extent (see :func:`line_count`) and scaled by ``micro_bin_share``, the share of
+    combining (``n_channels``) and the dwell (``n_chirps``): for rotors, the blades' power shared among the
+    lines that fill their Doppler extent (see :func:`line_count`); for birds, the share of the wings' power in
+    their strongest wingbeat line (:func:`wing_line_share`); scaled by ``micro_bin_share``, the share of
     their power the range FFT puts in the body's range bin, where the processing reads them (blade tips whose
     Doppler shifts their beat by bins, or flashes shorter than the ramp, spread over the range bins:
     :mod:`mdpipe.evaluate.range_share`); ``imbalance_line_db``, the strongest line
@@ -167,7 +168,8 @@ def blade_length_estimable(p):
 def wingbeat_estimable(p):
     """Wingbeat: a bird whose wing lines are detectable and that beats ``MIN_WINGBEATS`` times in a row.
 
-    All of: the wings' lines (spaced by the wingbeat) stand ``LINE_SNR_DB`` above the noise; the
+    All of: the wings' strongest line off the body's (the lines are spaced by the wingbeat) stands
+    ``LINE_SNR_DB`` above the noise; the
     longest stretch of flapping inside the dwell (``flap_run_s``: the whole dwell, or one flap burst
     of a flap-glide bird) holds ``MIN_WINGBEATS`` beats.
     """
@@ -306,6 +308,36 @@ def echo_power_v2(target, *, f0_hz, dwell_s, seed=0, index=0):
     return 0.5 * float(np.mean(np.abs(target_echo(target, realization, t_s, f0_hz=f0_hz).signal) ** 2))
 
 
+def wing_line_share(wings, *, f0_hz, chirp_period_s, n_chirps, seed=0, index=0):
+    """The share of a bird's wing echo (``wings``: the bird without its body) that its strongest wingbeat line holds
+    in the dwell spectrum (:func:`strongest_line_share`): the echo at the capture's chirps, demodulated by the body's
+    range (the processing demodulates the body line to 0 Hz).
+
+    The wings do not share their power evenly among the lines that fill their Doppler extent: the inner wing moves
+    slowly and the strokes dwell near their turns. On the default sweep's 83 birds the strongest line stands
+    1.1-18.4 dB (median 8.1 dB) above the even share of its extent (4 times the wing tip speed over the wavelength,
+    over the wingbeat)."""
+    t_s = np.arange(n_chirps) * chirp_period_s
+    realization = module_of(wings).realize(wings, seed=seed, index=index, duration_s=n_chirps * chirp_period_s)
+    echo = target_echo(wings, realization, t_s, f0_hz=f0_hz)
+    return strongest_line_share(echo.signal / carrier(echo.range_m, f0_hz), chirp_period_s=chirp_period_s,
+                                spacing_hz=wings.wingbeat_hz)
+
+
+def strongest_line_share(signal, *, chirp_period_s, spacing_hz):
+    """The share of ``signal``'s mean power (one sample a chirp) in the strongest bin of its Hann-windowed dwell
+    spectrum (a tone of amplitude a: a^2) at least half ``spacing_hz`` from 0 Hz, where the lines of a pattern
+    repeating at ``spacing_hz`` lie (the line at 0 Hz, the pattern's mean, tells no repeat). 0 for no power."""
+    signal = np.asarray(signal, dtype=np.complex128)
+    mean_power = float(np.mean(np.abs(signal) ** 2))
+    if mean_power <= 0:
+        return 0.0
+    window = np.hanning(len(signal) + 1)[:-1]
+    spectrum = np.abs(np.fft.fft(signal * window) / window.sum()) ** 2
+    f_hz = np.fft.fftfreq(len(signal), chirp_period_s)
+    return float(spectrum[np.abs(f_hz) >= spacing_hz / 2].max() / mean_power)
+
+
 def kept_share(t_s, range_m, *, wavelength_m):
     """The share of a body's echo power that removing its mean over the dwell keeps: ``1 - |<exp(j phi)>|^2``,
     ``phi = 4 pi r / lambda`` along the range track (samples ``t_s``, ``range_m``), integrated exactly over
@@ -386,10 +418,10 @@ def physics_of(index, expected, *, scene, noise_sigma_v, process):
                        elevation_given="elevation_deg" in process,
                        imbalance_line_db=imbalance_line_db(expected["blade_gains"]), tip_doppler_hz=tip_hz)
     if kind == "bird":
-        spread_hz = 4.0 * wing_speed_max_mps(target) / wavelength_m
-        lines = line_count(spread_hz + sweep_hz, target.wingbeat_hz, prf_hz=prf_hz)
+        line = wing_line_share(bodiless, f0_hz=radar.f_start_hz, chirp_period_s=radar.chirp_period_s,
+                               n_chirps=n_chirps, seed=scene.seed, index=index)
         flap_run_s = dwell_s if target.flap_glide is None else min(dwell_s, target.flap_glide.flap_s)
-        return Physics(**base, micro_line_snr_db=_db(share * micro / noise_v2 * gain / lines),
+        return Physics(**base, micro_line_snr_db=_db(share * micro / noise_v2 * gain * line),
                        wingbeat_hz=target.wingbeat_hz, flap_run_s=flap_run_s)
     return Physics(**base)
 

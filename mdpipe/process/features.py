@@ -21,7 +21,7 @@ from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period
                                     ramp_repeats_whole, ramp_train, sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
-from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, flap_glide_share, wingbeat
+from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, flap_glide_share, wing_reach_hz, wingbeat
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame
 BODY_FRAME_S = 0.032
@@ -1001,7 +1001,13 @@ def flapping(demodulated, *, prf_hz, noise_power):
     return Measured(share)
 
 
-def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None):
+def _wing_reach_mps(demodulated, *, prf_hz, noise_power, wavelength_m):
+    """:func:`~mdpipe.process.wingbeat.wing_reach_hz` as a speed (m/s), or None."""
+    reach_hz = wing_reach_hz(demodulated, prf_hz=prf_hz, noise_power=noise_power)
+    return None if reach_hz is None else abs(_speed_mps(reach_hz, wavelength_m))
+
+
+def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None, reach_mps=lambda: None):
     """A repeating micro-Doppler is a wingbeat only if its spread is that of wings (m/s, wavelength-free).
 
     Below ``MIN_WING_SPREAD_MPS`` it is swaying clutter (a branch, leaves); above ``DRONE_SPREAD_MPS``
@@ -1013,17 +1019,26 @@ def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None):
     of 1-4 m/s, which a bird's wing tips overrun; a span over ``DRONE_SPREAD_MPS`` already reads drone). ``beat``
     may be any measurement of wings (a flapping share): ``described`` names it in the notes (by default: a
     micro-Doppler repeating at its value in Hz).
+
+    Where the band is narrower than wings (or none stands out of the dwell spectrum), ``reach_mps`` (the wings'
+    reach in the frames, m/s, or None: :func:`~mdpipe.process.wingbeat.wing_reach_hz`) stands for it: weak wings,
+    or wings beating in bursts between glides, light the frames they beat in a few dB over the noise, and the dwell's
+    band, 10 dB over its smoothed spectrum, shows only the body line.
     """
     if beat.value is None:
         return beat
     described = described or f"a micro-Doppler repeating at {beat.value:.3g} Hz"
-    if halfwidth.value is None:
-        return withheld("not_applicable", f"{described}, but no band above the noise to tell wings from swaying "
-                        "clutter")
     speed_mps = None if body_velocity.value is None else abs(body_velocity.value)
     flying = speed_mps is not None and (speed_mps >= MIN_FLIGHT_SPEED_MPS
                                         or speed_mps * dwell_s >= MIN_FLIGHT_DISTANCE_M)
     low = MIN_FLYING_WING_SPREAD_MPS if flying else MIN_WING_SPREAD_MPS
+    if halfwidth.status == OK and halfwidth.value < low or halfwidth.value is None:
+        reach = reach_mps()
+        if reach is not None and low <= reach <= DRONE_SPREAD_MPS:
+            return beat
+    if halfwidth.value is None:
+        return withheld("not_applicable", f"{described}, but no band above the noise to tell wings from swaying "
+                        "clutter")
     if halfwidth.status in (OK, "aliased") and low <= halfwidth.value <= DRONE_SPREAD_MPS:
         return beat
     return withheld("not_applicable", f"{described} is no wingbeat: its "
@@ -1092,10 +1107,13 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         beat = flaps = withheld("not_applicable", "no wingbeat read: a line comb repeats the echo faster than wings "
                                 "beat, and a slower repeat in it is its lines' beat (rotors at rates apart)")
     else:
+        reach = functools.cache(lambda: _wing_reach_mps(body.demodulated, prf_hz=prf_hz, noise_power=noise_power,
+                                                        wavelength_m=wavelength_m))
         beat = wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
-                                   band_hz=2 * band.half_width_hz), band.halfwidth, body.velocity, dwell_s=dwell_s)
+                                   band_hz=2 * band.half_width_hz), band.halfwidth, body.velocity, dwell_s=dwell_s,
+                     reach_mps=reach)
         flaps = flapping(body.demodulated, prf_hz=prf_hz, noise_power=noise_power)
-        flaps = wings(flaps, band.halfwidth, body.velocity, dwell_s=dwell_s,
+        flaps = wings(flaps, band.halfwidth, body.velocity, dwell_s=dwell_s, reach_mps=reach,
                       described=flaps.value is not None and f"a micro-Doppler in bursts over {flaps.value:.0%} of the "
                       "dwell, dark between them,")
     rate_hz = turn.rate.value

@@ -28,10 +28,10 @@ its peak can be missed for its double): it is read again with frames of a quarte
 beating 14.6 Hz in 63 ms frames read 7.6 % off, and at 14 Hz at X band as 7 Hz).
 """
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
-from mdpipe.process.doppler import noise_level_per_bin, spectrogram
+from mdpipe.process.doppler import Spectrogram, noise_level_per_bin, spectrogram
 from mdpipe.process.filters import moving_average
 from mdpipe.process.periodicity import bartlett_error, period_from_autocorrelation, refine_period
 
@@ -62,11 +62,15 @@ BODY_STEADY_DB = 3.0          # ... while the body line holds within this of its
 BODY_BINS = 2                 # the body line: the Doppler bins this close to 0 Hz (the body demodulated there),
                               # the Hann window's main lobe to its nulls: wing rows dark in a glide lie beyond
 BODY_LOBE_BINS = 1.5          # ... the rows it lights by itself: 6 dB down 1 bin off, 15 dB down 1.5 bins off
+WEAK_MERGE_BINS = 4           # where fewer than MIN_WING_ROWS rows are lit: the bins averaged four at a time ...
+WEAK_ROW_DB = 3.0             # ... and a cell lit this far over the noise (noise's 4-bin mean passes it in 6 % of
+                              # the frames, its 75th percentile over a dwell's frames 1.3x the noise: never)
+LEAKAGE_DB = -10.0            # ... from where the body line's window leakage falls this far under the noise
 
 
-def _lit_level(noise_level):
-    """The power of a lit cell: ``SIGNAL_ROW_DB`` above ``noise_level`` (per bin)."""
-    return noise_level * 10 ** (SIGNAL_ROW_DB / 10)
+def _lit_level(noise_level, lit_db=SIGNAL_ROW_DB):
+    """The power of a lit cell: ``lit_db`` above ``noise_level`` (per bin)."""
+    return noise_level * 10 ** (lit_db / 10)
 
 
 def _frames_per_window(spec):
@@ -74,12 +78,12 @@ def _frames_per_window(spec):
     return int(round(spec.window_s / spec.hop_s))
 
 
-def _lit_rows(spec, noise_level, row_percentile, *, off_hz=-1.0):
+def _lit_rows(spec, noise_level, row_percentile, *, off_hz=-1.0, lit_db=SIGNAL_ROW_DB):
     """The Doppler rows within ``MAX_MICRO_DOPPLER_HZ`` (and beyond ``off_hz``) lit (:func:`_lit_level`) in
     ``100 - row_percentile`` % of the frames."""
     distance_hz = np.abs(spec.f_hz)
     power = spec.power[(distance_hz <= MAX_MICRO_DOPPLER_HZ) & (distance_hz > off_hz)]
-    return power[np.percentile(power, row_percentile, axis=1) > _lit_level(noise_level)]
+    return power[np.percentile(power, row_percentile, axis=1) > _lit_level(noise_level, lit_db)]
 
 
 def _body_hz(spec, bins=BODY_BINS):
@@ -104,13 +108,13 @@ def _lag_products(rows):
     return np.fft.irfft(np.abs(np.fft.rfft(rows, n=2 * n, axis=-1)) ** 2, axis=-1)[..., :n]
 
 
-def pattern_autocorrelation(spec, *, detrend_frames, noise_level, row_percentile=50):
+def pattern_autocorrelation(spec, *, detrend_frames, noise_level, row_percentile=50, lit_db=SIGNAL_ROW_DB):
     """Time autocorrelation of the detrended log-spectrogram, summed over Doppler, normalised (unbiased).
 
-    Only Doppler rows whose power stands ``SIGNAL_ROW_DB`` above ``noise_level`` (per bin) in
+    Only Doppler rows whose power stands ``lit_db`` above ``noise_level`` (per bin) in
     ``100 - row_percentile`` % of the frames take part: rows of noise would only dilute the pattern.
     """
-    power = _lit_rows(spec, noise_level, row_percentile)
+    power = _lit_rows(spec, noise_level, row_percentile, lit_db=lit_db)
     if len(power) == 0:
         return np.zeros(spec.power.shape[1])
     rows = np.log(power + np.finfo(float).tiny)
@@ -120,11 +124,11 @@ def pattern_autocorrelation(spec, *, detrend_frames, noise_level, row_percentile
     return r / r[0] if r[0] > 0 else r
 
 
-def flapping_frames(rows, *, noise_level, frame_rate):
-    """Frames in which a bird flaps: where the share of ``rows`` (its wing rows) lit ``SIGNAL_ROW_DB`` above
+def flapping_frames(rows, *, noise_level, frame_rate, lit_db=SIGNAL_ROW_DB):
+    """Frames in which a bird flaps: where the share of ``rows`` (its wing rows) lit ``lit_db`` above
     ``noise_level``, averaged over ``FLAP_SMOOTH_S`` (an odd number of frames, centred), reaches ``FLAP_SHARE``
     of its 95th percentile (the strokes light the rows unevenly within a beat; a glide leaves them dark)."""
-    lit = (rows > _lit_level(noise_level)).mean(axis=0)
+    lit = (rows > _lit_level(noise_level, lit_db)).mean(axis=0)
     smooth = moving_average(lit, 2 * int(round(FLAP_SMOOTH_S * frame_rate / 2)) + 1)
     return smooth >= FLAP_SHARE * np.percentile(smooth, 95)
 
@@ -135,7 +139,7 @@ def bursts(flapping):
     return edges.reshape(-1, 2)
 
 
-def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate):
+def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate, lit_db=SIGNAL_ROW_DB):
     """The pattern autocorrelation of a bird that glides between flapping bursts, within its bursts only.
 
     The rows lit in a quarter of the frames (``MIN_WING_ROWS`` of them at least) are read in the bursts
@@ -149,10 +153,10 @@ def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate):
     glide (frames not flapping in under ``MIN_GLIDE_SHARE`` of the dwell), flap for under ``FLAP_SMOOTH_S``,
     or fewer than ``MIN_WING_ROWS`` rows are lit.
     """
-    rows = _lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1])
+    rows = _lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1], lit_db=lit_db)
     if len(rows) < MIN_WING_ROWS:
         return None
-    flapping = flapping_frames(rows, noise_level=noise_level, frame_rate=frame_rate)
+    flapping = flapping_frames(rows, noise_level=noise_level, frame_rate=frame_rate, lit_db=lit_db)
     if not flapping.any() or flapping.mean() > 1 - MIN_GLIDE_SHARE:
         return None
     rows = np.log(rows + np.finfo(float).tiny)
@@ -202,17 +206,25 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
     missed for its double (a sparrow's 14 Hz read at 7 Hz in 64 ms frames). That look's period is taken
     where it is T / 2 within ``BLUR_AGREEMENT``, or T and T is under two frames (the first frames blurred
     it: a 14.6 Hz beat read 7.6 % off in 63 ms frames); T where it confirms T over two frames, finds none,
-    or cannot be shorter; none where it finds another period.
+    or cannot be shorter; none where it finds another period. The second look reads its rows as the first
+    did (each bin, or averaged for weak wings: :func:`wing_frames`).
     """
     frame_s = _dwell_frame_s(demodulated, prf_hz=prf_hz)
     if band_hz:
         frame_s = min(frame_s, max(MIN_FRAME_S, BAND_BINS / band_hz))
-    found, window_s = _looks(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s, need_wings=True)
+    frames = wing_frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
+    if frames.wing_rows() < MIN_WING_ROWS:
+        return None
+    found = _looks(frames)
+    window_s = frames.spec.window_s
     if found is None or found.period_s >= BLURRED_FRAMES * window_s:
         return found
-    again, shorter_s = _looks(demodulated, prf_hz=prf_hz, noise_power=noise_power,
-                              frame_s=max(MIN_FRAME_S, found.period_s / BLURRED_FRAMES))
-    if again is None or shorter_s >= window_s:  # nothing more seen, or no shorter frame (8 chirps at least)
+    shorter = wing_frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
+                          frame_s=max(MIN_FRAME_S, found.period_s / BLURRED_FRAMES), weak=frames.weak)
+    if shorter.spec.window_s >= window_s:  # no shorter frame (8 chirps at least)
+        return found
+    again = _looks(shorter)
+    if again is None:  # nothing more seen
         return found
     ratio = again.period_s / found.period_s
     if abs(2 * ratio - 1) <= BLUR_AGREEMENT:  # the first look took the wingbeat's double
@@ -222,39 +234,154 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
     return None
 
 
-def _looks(demodulated, *, prf_hz, noise_power, frame_s, need_wings=False):
-    """The wingbeat period in a spectrogram of ``frame_s`` frames (hop a quarter of it), and the frame used.
+@dataclass(frozen=True)
+class WingFrames:
+    """A spectrogram read for wings: ``spec`` (its rows each a Doppler bin, or bins averaged), the noise level per bin
+    ``noise_level``, ``lit_db`` how far above it a cell is lit, ``off_hz`` how far from 0 Hz the wing rows lie
+    (beyond the body line), and whether the rows are the weak look's (:func:`weak_rows`)."""
 
-    With ``need_wings``, none unless ``MIN_WING_ROWS`` rows off the body line (``BODY_LOBE_BINS``) are lit in a
-    quarter of the frames: a modulation of the body line alone (its main lobe's three rows) is no wing, and
-    the line's beat with another (a residual line at 0 Hz, a second body) repeats it as evenly.
+    spec: object
+    noise_level: float
+    lit_db: float
+    off_hz: float
+    weak: bool
+
+    @property
+    def frame_rate(self):
+        return 1.0 / self.spec.hop_s
+
+    def lit_rows(self, row_percentile, *, wings_only=False):
+        """The rows lit in ``100 - row_percentile`` % of the frames (off the body line only, ``wings_only``)."""
+        return _lit_rows(self.spec, self.noise_level, row_percentile, off_hz=self.off_hz if wings_only else -1.0,
+                         lit_db=self.lit_db)
+
+    def wing_rows(self):
+        """How many rows off the body line are lit in a quarter of the frames."""
+        return len(self.lit_rows(SIGNAL_ROW_PERCENTILES[-1], wings_only=True))
+
+
+def wing_frames(demodulated, *, prf_hz, noise_power, frame_s, weak=None, body_bins=BODY_LOBE_BINS):
+    """The spectrogram of ``frame_s`` frames (hop a quarter of it) read for wings (:class:`WingFrames`), the wing
+    rows lying ``body_bins`` Doppler bins off 0 Hz or more.
+
+    Its rows as they are, a cell lit ``SIGNAL_ROW_DB`` over the noise; or, ``weak`` (by default: where fewer than
+    ``MIN_WING_ROWS`` wing rows are lit so), :func:`weak_rows`, a cell lit ``WEAK_ROW_DB`` over the noise.
+    """
+    spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
+    return _read_for_wings(spec, noise_level, weak=weak, body_bins=body_bins)
+
+
+def _read_for_wings(spec, noise_level, *, weak, body_bins):
+    """:func:`wing_frames` of a spectrogram ``spec`` (noise ``noise_level`` per bin)."""
+    fine = WingFrames(spec, noise_level, SIGNAL_ROW_DB, _body_hz(spec, body_bins), weak=False)
+    if weak is None:
+        weak = fine.wing_rows() < MIN_WING_ROWS
+    if not weak:
+        return fine
+    return WingFrames(weak_rows(spec, noise_level), noise_level, WEAK_ROW_DB, fine.off_hz, weak=True)
+
+
+def hann_leakage(bins):
+    """The envelope of a Hann window's response ``bins`` (1.5 or more) bins from a tone, in power against its peak:
+    ``(pi k (k^2 - 1))^-2`` (its transform is ``sin(pi k) / (pi k (1 - k^2))``; reached at half-bin offsets: -15.4 dB
+    at 1.5 bins, -32.3 dB at 2.5)."""
+    k = np.asarray(bins, dtype=np.float64)
+    return 1.0 / (np.pi * k * (k ** 2 - 1)) ** 2
+
+
+def weak_rows(spec, noise_level):
+    """``spec`` with the rows of weak wings averaged ``WEAK_MERGE_BINS`` bins at a time: a wing lit a few dB over the
+    noise in each bin (a crow at -7.8 dB per IF sample, K band: its wing rows 2-6 dB up in a quarter of the 64 ms
+    frames) stands out of the average's smaller scatter.
+
+    The body line's three bins at 0 Hz make one row; the averaged rows start, each side, where the body's window
+    leakage (:func:`hann_leakage`, at the 95th percentile of its power over the frames) falls ``LEAKAGE_DB`` under
+    the noise, so that the body's own sidelobes do not pass for wings. Each row's power is its bins' mean (the noise
+    level per bin stays that of ``spec``) and its Doppler their mean.
+    """
+    f_hz = spec.f_hz
+    centre = int(np.argmin(np.abs(f_hz)))
+    body = spec.power[max(centre - 1, 0):centre + 2]
+    body_db = 10 * np.log10(np.percentile(body.max(axis=0), 95) / noise_level + np.finfo(float).tiny)
+    first = 2
+    while first < len(f_hz) and body_db + 10 * np.log10(hann_leakage(first - 0.5)) > LEAKAGE_DB:  # body half a bin off
+        first += 1
+    groups = [np.arange(max(centre - 1, 0), min(centre + 2, len(f_hz)))]
+    for side in (1, -1):
+        start = first
+        while True:
+            group = centre + side * np.arange(start, start + WEAK_MERGE_BINS)
+            if group.min() < 0 or group.max() >= len(f_hz) or np.abs(f_hz[group]).max() > MAX_MICRO_DOPPLER_HZ:
+                break
+            groups.append(group)
+            start += WEAK_MERGE_BINS
+    groups.sort(key=lambda g: f_hz[g].mean())
+    return Spectrogram(power=np.array([spec.power[g].mean(axis=0) for g in groups]), t_s=spec.t_s,
+                       f_hz=np.array([f_hz[g].mean() for g in groups]), window_s=spec.window_s, hop_s=spec.hop_s)
+
+
+def wing_reach_hz(demodulated, *, prf_hz, noise_power):
+    """How far from the body line (Hz) the wings' rows of :func:`weak_rows` reach, lit ``WEAK_ROW_DB`` over the noise
+    in a quarter of the frames (of ``FRAME_S``, an eighth of the dwell at most): the outer edge of the outermost
+    such row. None where fewer than ``MIN_WING_ROWS`` are.
+
+    The dwell's band (:func:`mdpipe.process.spectral.occupied_band`, 10 dB over the smoothed dwell spectrum) misses
+    wings that stand a few dB over the noise in each frame, or beat only in bursts (the crow above: a band of +-31
+    Hz, its body line's, where its wing rows reach +-250 Hz).
+    """
+    frames = wing_frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
+                         frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz), weak=True)
+    spec = frames.spec
+    distance_hz = np.abs(spec.f_hz)
+    rows = (distance_hz <= MAX_MICRO_DOPPLER_HZ) & (distance_hz > frames.off_hz)
+    lit = rows.copy()
+    lit[rows] = np.percentile(spec.power[rows], SIGNAL_ROW_PERCENTILES[-1], axis=1) > _lit_level(
+        frames.noise_level, frames.lit_db)
+    if lit.sum() < MIN_WING_ROWS:
+        return None
+    bin_hz = prf_hz / int(round(spec.window_s * prf_hz))
+    return float(distance_hz[lit].max() + WEAK_MERGE_BINS * bin_hz / 2)
+
+
+def _looks(frames):
+    """The wingbeat period in ``frames`` (:class:`WingFrames`).
 
     Each row set of ``SIGNAL_ROW_PERCENTILES`` gives a period; the first seen to repeat with
     ``MIN_PERIODICITY`` is taken, else the first whose repeat the record cannot hold (two wingbeats in the
     dwell) with ``MIN_SINGLE_PERIODICITY``, else the period within flapping bursts (:func:`_gated_period`).
+    In the weak look a row set is read only with ``MIN_WING_ROWS`` wing rows in it: the body's row alone, a
+    line 0.4 bin off 0 Hz with weak wings 3 Hz in it, repeated at 1.23 Hz (its beat with the wings' lines);
+    rows of single bins keep theirs (a goose of the evaluation sweep reads its wingbeat in the rows lit in half
+    its frames, which hold under three wing rows). (:func:`wingbeat` reads none unless ``MIN_WING_ROWS`` rows off the body line are lit in a quarter of the
+    frames: a modulation of the body line alone (its main lobe's three rows) is no wing, and the line's beat with
+    another (a residual line at 0 Hz, a second body) repeats it as evenly.)
     """
-    spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
-    if need_wings and len(_lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1],
-                                     off_hz=_body_hz(spec, BODY_LOBE_BINS))) < MIN_WING_ROWS:
-        return None, spec.window_s
-    frame_rate = 1.0 / spec.hop_s
+    spec, frame_rate = frames.spec, frames.frame_rate
     single = None
     for row_percentile in SIGNAL_ROW_PERCENTILES:
+        if frames.weak and len(frames.lit_rows(row_percentile, wings_only=True)) < MIN_WING_ROWS:
+            continue  # the body's row with weak wings' beat in it (see above)
         r = pattern_autocorrelation(spec, detrend_frames=int(2 * frame_rate / MIN_WINGBEAT_HZ),
-                                    noise_level=noise_level, row_percentile=row_percentile)
+                                    noise_level=frames.noise_level, row_percentile=row_percentile,
+                                    lit_db=frames.lit_db)
         found = _period(r, frame_rate=frame_rate)
         if found is None:
             continue
         if found.repeats >= 2 and found.strength >= MIN_PERIODICITY:
-            return _within_bursts(found, spec, noise_level=noise_level, frame_rate=frame_rate), spec.window_s
+            return _within_bursts(found, frames)
         if found.repeats == 1 and found.strength >= MIN_SINGLE_PERIODICITY and single is None:
             single = found
     if single is not None:
-        return _within_bursts(single, spec, noise_level=noise_level, frame_rate=frame_rate), spec.window_s
-    return _gated_period(spec, noise_level=noise_level, frame_rate=frame_rate), spec.window_s
+        return _within_bursts(single, frames)
+    return _gated_period(frames)
 
 
-def _within_bursts(found, spec, *, noise_level, frame_rate):
+def _gated(frames):
+    return gated_pattern_autocorrelation(frames.spec, noise_level=frames.noise_level, frame_rate=frames.frame_rate,
+                                         lit_db=frames.lit_db)
+
+
+def _within_bursts(found, frames):
     """``found``, a period seen in the whole record, measured again within the flapping bursts where the bird
     glides between them (:func:`gated_pattern_autocorrelation`): its peaks near k T refined there. That period
     is taken where it is within ``BURST_AGREEMENT`` of ``found`` and its peaks line up on k T more closely
@@ -267,10 +394,11 @@ def _within_bursts(found, spec, *, noise_level, frame_rate):
     autocorrelation pairs only frames of one burst, but rests on fewer pairs and peaks: where the bursts are
     short and many, the whole record reads closer (a crow flapping 1.0 s at a time: 0.1 % against 1.2 %).
     """
-    gated = gated_pattern_autocorrelation(spec, noise_level=noise_level, frame_rate=frame_rate)
+    gated = _gated(frames)
     if gated is None:
         return found
     r, _ = gated
+    frame_rate = frames.frame_rate
     coarse = found.period_s * frame_rate
     if (1 + BURST_AGREEMENT) * coarse >= REPEAT_SHARE * len(r):
         return found
@@ -280,7 +408,7 @@ def _within_bursts(found, spec, *, noise_level, frame_rate):
     return replace(found, period_s=period / frame_rate, error_s=error / frame_rate)
 
 
-def _gated_period(spec, *, noise_level, frame_rate):
+def _gated_period(frames):
     """The wingbeat within the flapping bursts of a bird that glides between them (a Period or None).
 
     Read on :func:`gated_pattern_autocorrelation` (two beats in a row in a burst at least) with the strengths
@@ -290,16 +418,16 @@ def _gated_period(spec, *, noise_level, frame_rate):
     overlapping frames of speckle correlate by chance); repeats at 3T are not asked for (a burst holds few
     beats, and a drifting wingbeat falls short there).
     """
-    gated = gated_pattern_autocorrelation(spec, noise_level=noise_level, frame_rate=frame_rate)
+    gated = _gated(frames)
     if gated is None:
         return None
     r, pairs = gated
-    found = period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
+    found = period_from_autocorrelation(r, sample_rate_hz=frames.frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
                                         max_period_s=1.0 / MIN_WINGBEAT_HZ, repeat_share=REPEAT_SHARE, max_order=2)
     if found is None:
         return None
     repeat_seen = 2 * found.peak_lag < int(REPEAT_SHARE * len(r))  # the 2T test was made (and passed)
-    overlap = r[1:min(len(r), _frames_per_window(spec))]  # frames sharing chirps correlate
+    overlap = r[1:min(len(r), _frames_per_window(frames.spec))]  # frames sharing chirps correlate
     error = bartlett_error(overlap, pairs[found.peak_lag])
     needed = max(MIN_PERIODICITY if repeat_seen else MIN_SINGLE_PERIODICITY, PAIR_SIGMAS * error)
     return found if found.strength >= needed else None
@@ -321,20 +449,22 @@ def flap_glide_share(demodulated, *, prf_hz, noise_power):
     """
     spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
                                 frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz))
-    body_hz = _body_hz(spec)
-    wings = _lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1], off_hz=body_hz)
-    body = spec.power[np.abs(spec.f_hz) <= body_hz]
+    frames = _read_for_wings(spec, noise_level, weak=None, body_bins=BODY_BINS)
+    wings = frames.lit_rows(SIGNAL_ROW_PERCENTILES[-1], wings_only=True)
+    body = spec.power[np.abs(spec.f_hz) <= frames.off_hz]
     if len(wings) < MIN_WING_ROWS or len(body) == 0:
         return None
-    flapping = flapping_frames(wings, noise_level=noise_level, frame_rate=1.0 / spec.hop_s)
+    flapping = flapping_frames(wings, noise_level=noise_level, frame_rate=frames.frame_rate, lit_db=frames.lit_db)
     share = float(flapping.mean())
     if not MIN_GLIDE_SHARE <= share <= 1 - MIN_GLIDE_SHARE:
         return None
-    wing_power, body_power = wings.sum(axis=0), body.sum(axis=0)
+    # weak wings' rows are mostly noise while flapping: their drop is that of their power over it
+    wing_power = wings.sum(axis=0) - (len(wings) * noise_level if frames.weak else 0.0)
+    body_power = body.sum(axis=0)
     tiny = np.finfo(float).tiny
 
     def change_db(p):
-        return 10 * np.log10((np.median(p[flapping]) + tiny) / (np.median(p[~flapping]) + tiny))
+        return 10 * np.log10(max(np.median(p[flapping]), tiny) / max(np.median(p[~flapping]), tiny))
 
     if change_db(wing_power) < GLIDE_DROP_DB or abs(change_db(body_power)) > BODY_STEADY_DB:
         return None
