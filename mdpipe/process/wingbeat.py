@@ -65,6 +65,7 @@ BODY_LOBE_BINS = 1.5          # ... the rows it lights by itself: 6 dB down 1 bi
 WEAK_MERGE_BINS = 4           # where fewer than MIN_WING_ROWS rows are lit: the bins averaged four at a time ...
 WEAK_ROW_DB = 3.0             # ... and a cell lit this far over the noise (noise's 4-bin mean passes it in 6 % of
                               # the frames, its 75th percentile over a dwell's frames 1.3x the noise: never)
+REACH_SPAN_SHARE = 0.8        # weak rows' reach is read only where it ends within this share of the span's half
 LEAKAGE_DB = -10.0            # ... from where the body line's window leakage falls this far under the noise
 
 
@@ -289,7 +290,7 @@ def hann_leakage(bins):
     return 1.0 / (np.pi * k * (k ** 2 - 1)) ** 2
 
 
-def weak_rows(spec, noise_level):
+def weak_rows(spec, noise_level, *, max_hz=MAX_MICRO_DOPPLER_HZ):
     """``spec`` with the rows of weak wings averaged ``WEAK_MERGE_BINS`` bins at a time: a wing lit a few dB over the
     noise in each bin (a crow at -7.8 dB per IF sample, K band: its wing rows 2-6 dB up in a quarter of the 64 ms
     frames) stands out of the average's smaller scatter.
@@ -311,7 +312,7 @@ def weak_rows(spec, noise_level):
         start = first
         while True:
             group = centre + side * np.arange(start, start + WEAK_MERGE_BINS)
-            if group.min() < 0 or group.max() >= len(f_hz) or np.abs(f_hz[group]).max() > MAX_MICRO_DOPPLER_HZ:
+            if group.min() < 0 or group.max() >= len(f_hz) or np.abs(f_hz[group]).max() > max_hz:
                 break
             groups.append(group)
             start += WEAK_MERGE_BINS
@@ -321,26 +322,29 @@ def weak_rows(spec, noise_level):
 
 
 def wing_reach_hz(demodulated, *, prf_hz, noise_power):
-    """How far from the body line (Hz) the wings' rows of :func:`weak_rows` reach, lit ``WEAK_ROW_DB`` over the noise
-    in a quarter of the frames (of ``FRAME_S``, an eighth of the dwell at most): the outer edge of the outermost
-    such row. None where fewer than ``MIN_WING_ROWS`` are.
+    """How far from the body line (Hz) the echo's rows of :func:`weak_rows`, over the whole span, reach, lit
+    ``WEAK_ROW_DB`` over the noise in a quarter of the frames (of ``FRAME_S``, an eighth of the dwell at most): the
+    outer edge of the outermost such row. None where fewer than ``MIN_WING_ROWS`` are, or where they reach past
+    ``REACH_SPAN_SHARE`` of the span's half (the reach is then unknown: faint blade flashes that fill the span
+    light it so, a quadrotor at 77 GHz to 97 % of it, and so do a gull's wings at 94 GHz).
 
     The dwell's band (:func:`mdpipe.process.spectral.occupied_band`, 10 dB over the smoothed dwell spectrum) misses
-    wings that stand a few dB over the noise in each frame, or beat only in bursts (the crow above: a band of +-31
-    Hz, its body line's, where its wing rows reach +-250 Hz).
+    wings that stand a few dB over the noise in each frame, or beat only in bursts (a crow of the evaluation sweep,
+    K band: a band of +-31 Hz, its body line's, where its wing rows reach +-250 Hz). Read over the whole span, weak
+    blades reach on past wings (a quadrotor at K band, its lines 12 dB over the noise, its rows beat at 11.7 Hz
+    and, read to 2 kHz only, passed for wings).
     """
-    frames = wing_frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
-                         frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz), weak=True)
-    spec = frames.spec
-    distance_hz = np.abs(spec.f_hz)
-    rows = (distance_hz <= MAX_MICRO_DOPPLER_HZ) & (distance_hz > frames.off_hz)
-    lit = rows.copy()
-    lit[rows] = np.percentile(spec.power[rows], SIGNAL_ROW_PERCENTILES[-1], axis=1) > _lit_level(
-        frames.noise_level, frames.lit_db)
+    spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
+                                frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz))
+    off_hz = _body_hz(spec, BODY_LOBE_BINS)
+    rows = weak_rows(spec, noise_level, max_hz=np.inf)
+    distance_hz = np.abs(rows.f_hz)
+    lit = (distance_hz > off_hz) & (np.percentile(rows.power, SIGNAL_ROW_PERCENTILES[-1], axis=1)
+                                   > _lit_level(noise_level, WEAK_ROW_DB))
     if lit.sum() < MIN_WING_ROWS:
         return None
-    bin_hz = prf_hz / int(round(spec.window_s * prf_hz))
-    return float(distance_hz[lit].max() + WEAK_MERGE_BINS * bin_hz / 2)
+    reach_hz = float(distance_hz[lit].max() + WEAK_MERGE_BINS * (spec.f_hz[1] - spec.f_hz[0]) / 2)
+    return reach_hz if reach_hz <= REACH_SPAN_SHARE * prf_hz / 2 else None
 
 
 def _looks(frames):
