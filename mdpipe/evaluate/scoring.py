@@ -21,6 +21,7 @@ import numpy as np
 
 from mdpipe.evaluate import range_share
 from mdpipe.physics import rotor
+from mdpipe.process.doppler import power_spectrum
 from mdpipe.simulate.targets import module_of, target_echo
 from mdpipe.simulate.targets.common import carrier
 
@@ -332,10 +333,8 @@ def strongest_line_share(signal, *, chirp_period_s, spacing_hz):
     mean_power = float(np.mean(np.abs(signal) ** 2))
     if mean_power <= 0:
         return 0.0
-    window = np.hanning(len(signal) + 1)[:-1]
-    spectrum = np.abs(np.fft.fft(signal * window) / window.sum()) ** 2
-    f_hz = np.fft.fftfreq(len(signal), chirp_period_s)
-    return float(spectrum[np.abs(f_hz) >= spacing_hz / 2].max() / mean_power)
+    spectrum = power_spectrum(signal, prf_hz=1.0 / chirp_period_s)
+    return float(spectrum.power[np.abs(spectrum.f_hz) >= spacing_hz / 2].max() / mean_power)
 
 
 def kept_share(t_s, range_m, *, wavelength_m):

@@ -1032,7 +1032,7 @@ def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None, reach_mps=
     flying = speed_mps is not None and (speed_mps >= MIN_FLIGHT_SPEED_MPS
                                         or speed_mps * dwell_s >= MIN_FLIGHT_DISTANCE_M)
     low = MIN_FLYING_WING_SPREAD_MPS if flying else MIN_WING_SPREAD_MPS
-    if halfwidth.status == OK and halfwidth.value < low or halfwidth.value is None:
+    if halfwidth.value is None or (halfwidth.status == OK and halfwidth.value < low):
         reach = reach_mps()
         if reach is not None and low <= reach <= DRONE_SPREAD_MPS:
             return beat

@@ -65,8 +65,8 @@ BODY_LOBE_BINS = 1.5          # ... the rows it lights by itself: 6 dB down 1 bi
 WEAK_MERGE_BINS = 4           # where fewer than MIN_WING_ROWS rows are lit: the bins averaged four at a time ...
 WEAK_ROW_DB = 3.0             # ... and a cell lit this far over the noise (noise's 4-bin mean passes it in 6 % of
                               # the frames, its 75th percentile over a dwell's frames 1.3x the noise: never)
-REACH_SPAN_SHARE = 0.8        # weak rows' reach is read only where it ends within this share of the span's half
 LEAKAGE_DB = -10.0            # ... from where the body line's window leakage falls this far under the noise
+REACH_SPAN_SHARE = 0.8        # weak rows' reach is read only where it ends within this share of the span's half
 
 
 def _lit_level(noise_level, lit_db=SIGNAL_ROW_DB):
@@ -79,12 +79,19 @@ def _frames_per_window(spec):
     return int(round(spec.window_s / spec.hop_s))
 
 
+def _lit_mask(spec, noise_level, row_percentile, *, off_hz=-1.0, lit_db=SIGNAL_ROW_DB, max_hz=MAX_MICRO_DOPPLER_HZ):
+    """Which Doppler rows of ``spec``, within ``max_hz`` and beyond ``off_hz``, are lit (:func:`_lit_level`) in
+    ``100 - row_percentile`` % of the frames."""
+    distance_hz = np.abs(spec.f_hz)
+    mask = (distance_hz <= max_hz) & (distance_hz > off_hz)
+    mask[mask] = np.percentile(spec.power[mask], row_percentile, axis=1) > _lit_level(noise_level, lit_db)
+    return mask
+
+
 def _lit_rows(spec, noise_level, row_percentile, *, off_hz=-1.0, lit_db=SIGNAL_ROW_DB):
     """The Doppler rows within ``MAX_MICRO_DOPPLER_HZ`` (and beyond ``off_hz``) lit (:func:`_lit_level`) in
     ``100 - row_percentile`` % of the frames."""
-    distance_hz = np.abs(spec.f_hz)
-    power = spec.power[(distance_hz <= MAX_MICRO_DOPPLER_HZ) & (distance_hz > off_hz)]
-    return power[np.percentile(power, row_percentile, axis=1) > _lit_level(noise_level, lit_db)]
+    return spec.power[_lit_mask(spec, noise_level, row_percentile, off_hz=off_hz, lit_db=lit_db)]
 
 
 def _body_hz(spec, bins=BODY_BINS):
@@ -336,14 +343,12 @@ def wing_reach_hz(demodulated, *, prf_hz, noise_power):
     """
     spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
                                 frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz))
-    off_hz = _body_hz(spec, BODY_LOBE_BINS)
     rows = weak_rows(spec, noise_level, max_hz=np.inf)
-    distance_hz = np.abs(rows.f_hz)
-    lit = (distance_hz > off_hz) & (np.percentile(rows.power, SIGNAL_ROW_PERCENTILES[-1], axis=1)
-                                   > _lit_level(noise_level, WEAK_ROW_DB))
+    lit = _lit_mask(rows, noise_level, SIGNAL_ROW_PERCENTILES[-1], off_hz=_body_hz(spec, BODY_LOBE_BINS),
+                    lit_db=WEAK_ROW_DB, max_hz=np.inf)
     if lit.sum() < MIN_WING_ROWS:
         return None
-    reach_hz = float(distance_hz[lit].max() + WEAK_MERGE_BINS * (spec.f_hz[1] - spec.f_hz[0]) / 2)
+    reach_hz = float(np.abs(rows.f_hz[lit]).max() + WEAK_MERGE_BINS * (spec.f_hz[1] - spec.f_hz[0]) / 2)
     return reach_hz if reach_hz <= REACH_SPAN_SHARE * prf_hz / 2 else None
 
 
