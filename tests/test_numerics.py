@@ -78,6 +78,24 @@ def test_spectrogram_is_short_time_fft(n_window, hop):
     np.testing.assert_allclose(mine.f_hz, stft.f)
 
 
+@pytest.mark.parametrize("pad", [2, 8])
+def test_padded_spectrogram_is_zero_padded_short_time_fft(pad):
+    """``pad``: the same frames transformed on ``pad`` times as many bins (scipy's ``mfft``), the unpadded bins among
+    them unchanged."""
+    prf, n_window, hop = 15625.0, 33, 7
+    signal = np.random.default_rng(3).normal(size=(4000, 2)) @ np.array([1.0, 1j])
+    mine = doppler.spectrogram(signal, prf_hz=prf, window_s=n_window / prf, hop_s=hop / prf, pad=pad)
+    stft = ShortTimeFFT(hann(n_window, sym=False), hop=hop, fs=prf, fft_mode="centered", mfft=pad * n_window,
+                        scale_to="magnitude")
+    p0, p1 = stft.lower_border_end[1], stft.upper_border_begin(len(signal))[1]
+    reference = np.abs(stft.stft(signal, p0=p0, p1=p1)) ** 2
+    np.testing.assert_allclose(mine.power, reference, rtol=1e-9, atol=1e-12 * reference.max())
+    np.testing.assert_allclose(mine.f_hz, stft.f)
+    plain = doppler.spectrogram(signal, prf_hz=prf, window_s=n_window / prf, hop_s=hop / prf)
+    zero = int(np.argmin(np.abs(mine.f_hz)))
+    np.testing.assert_allclose(mine.power[zero % pad::pad], plain.power, rtol=1e-9, atol=1e-12 * plain.power.max())
+
+
 def test_spectrogram_of_a_short_signal_has_one_frame():
     spec = doppler.spectrogram(np.ones(20, complex), prf_hz=1000.0, window_s=0.1, hop_s=0.05)
     assert spec.power.shape[1] == 1 and np.all(np.isfinite(spec.power))

@@ -55,14 +55,15 @@ def noise_level_per_bin(noise_power, n_window):
     return noise_power * np.sum(window ** 2) / np.sum(window) ** 2
 
 
-def spectrogram(signal, *, prf_hz, window_s, hop_s):
+def spectrogram(signal, *, prf_hz, window_s, hop_s, pad=1):
     """Short-time power spectrum of a complex slow-time ``signal`` (Hann window).
 
     ``window_s`` and ``hop_s`` are rounded to whole chirps (window at least 8, at most half the
     signal; hop at least 1). Frame p covers chirps ``p hop - n // 2 ... p hop - n // 2 + n - 1``;
     the frames kept are those whose non-zero window samples (all but the first, which a periodic
     Hann window zeroes) lie inside the signal (at least one, zero-padded, for a signal shorter
-    than two windows and a hop).
+    than two windows and a hop). ``pad``: each frame's transform is read on ``pad`` times as many Doppler bins
+    (the frame zero-padded), the same spectrum sampled finer.
     """
     signal = np.asarray(signal)
     n_window = min(max(8, int(round(window_s * prf_hz))), max(2, len(signal) // 2))
@@ -79,13 +80,14 @@ def spectrogram(signal, *, prf_hz, window_s, hop_s):
         starts = np.array([first * hop])
     views = sliding_window_view(padded, n_window)
     window = periodic_hann(n_window)
-    power = np.empty((n_window, len(starts)))
+    n_fft = n_window * int(pad)
+    power = np.empty((n_fft, len(starts)))
     for block in range(0, len(starts), STFT_BLOCK_FRAMES):  # bounded temporaries, whatever the dwell
         frames = views[starts[block:block + STFT_BLOCK_FRAMES]] * window
-        spectra = np.fft.fftshift(np.fft.fft(frames, axis=-1), axes=-1) / window.sum()
+        spectra = np.fft.fftshift(np.fft.fft(frames, n=n_fft, axis=-1), axes=-1) / window.sum()
         power[:, block:block + STFT_BLOCK_FRAMES] = np.abs(spectra.T) ** 2
     return Spectrogram(power=power, t_s=np.arange(first, last) * hop / prf_hz,
-                       f_hz=np.fft.fftshift(np.fft.fftfreq(n_window, 1.0 / prf_hz)),
+                       f_hz=np.fft.fftshift(np.fft.fftfreq(n_fft, 1.0 / prf_hz)),
                        window_s=n_window / prf_hz, hop_s=hop / prf_hz)
 
 

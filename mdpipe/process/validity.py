@@ -26,7 +26,8 @@ STATUS_CODES = {
     "blade_conflict": "the blade count given contradicts the echo (odd/even flashes or blade imbalance lines)",
     "no_rotation": "needs the rotation rate, which was not measured",
     "elevation": "the rotor plane is too close to face-on (|beta| > 80 deg): Eq. 6 divides by ~0",
-    "few_harmonics": "the blade tips span too few rotation harmonics for the flash edges to be sharp",
+    "few_harmonics": "the blade tips span too few Doppler bins (under 8 a side) of a frame holding one flash for the "
+                     "flash edges to be sharp",
     "no_edges": "no flash frame shows both Doppler edges inside the span",
     "edges_inside_band": "the micro-Doppler reaches well beyond the flash edges: they are not the tips' (folded tips)",
     "edges_scatter": "the flash edges scatter too much from flash to flash (flashes near the noise): their median is not sharp",

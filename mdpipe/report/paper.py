@@ -49,7 +49,10 @@ EXPLANATIONS = {
     "BW spectrogram (Hz)": (
         "mdpipe reads the flash edges (half amplitude of the broadside blade's rectangular spectrum), which sit on "
         "Eq. 6; the paper's spectrogram extent is read by eye above a display threshold, which the sinc flash and "
-        "the window widen: its values run 10-16 % above Eq. 6 (config 4: 81 %, see below)."),
+        "the window widen: its values run 10-16 % above Eq. 6 (config 4: 81 %, see below). In config 4 (four rotors "
+        "at one rate, 34-67 deg apart, Gamma = 26.7) the tips span 3.3 Doppler bins a side of a quarter chopping "
+        "period, under the 8 the edges need, and a frame long enough holds the other rotors' flashes too: mdpipe's "
+        "edges read wide and carry `few_harmonics`."),
     "BW power spectrum (Hz)": (
         "The paper's rule (20 dB above the spectrum's mean) measures where the line envelope drops below a level "
         "set by the whole span's mean, not the tip Doppler: here it reads below Eq. 6, by an amount that depends on "
@@ -63,7 +66,8 @@ EXPLANATIONS = {
         "reading of two line positions on a spectrum of finite resolution would be."),
     "r estimated (m)": (
         "The paper inverts Eq. 6 with its own (wider) bandwidths, so its r runs 5-10 % long; mdpipe inverts Eq. 6 "
-        "with the flash-edge bandwidth."),
+        "with the flash-edge bandwidth, and not where the flash edges blur (config 4: see the spectrogram "
+        "bandwidth)."),
     "omega_p estimated (rev/s)": "The paper takes 1/T_c from a by-eye T_c; mdpipe measures the flash period.",
     "BW spectrogram, bird (Hz)": (
         "The paper does not define its bird BW. The physics column is the model's largest instantaneous spread "
@@ -110,18 +114,20 @@ def reproduce(configs_dir, *, work_dir, figures_dir=None, progress=None):
         truth, row = _run(path, work_dir, figures_dir, beta)
         for name, key, physics, measured in DRONE_QUANTITIES:
             rows.append({"config": str(number), "quantity": name, "paper": paper.get(key),
-                         "physics": physics(truth), "mdpipe": row.get(measured), "mdpipe_class": row["class"],
+                         "physics": physics(truth), "mdpipe": row.get(measured),
+                         "mdpipe_status": row.get(f"{measured}_status"), "mdpipe_class": row["class"],
                          "mdpipe_notes": row["notes"]})
         if progress:
             progress(f"config {number}: {row['class']}")
     for letter, (bw, period) in TABLE_V.items():
         truth, row = _run(Path(configs_dir) / f"table2_{letter}.yaml", work_dir, figures_dir, 0.0)
         wingbeat = row.get("wingbeat_period_s")
-        for name, paper, physics, measured in (
-                ("BW spectrogram, bird (Hz)", bw, truth["micro_doppler_spread_hz"], row.get("doppler_bw_hz")),
-                ("wingbeat period (s)", period, truth["wingbeat_period_s"], wingbeat)):
+        for name, paper, physics, measured, status in (
+                ("BW spectrogram, bird (Hz)", bw, truth["micro_doppler_spread_hz"], row.get("doppler_bw_hz"),
+                 row.get("doppler_bw_hz_status")),
+                ("wingbeat period (s)", period, truth["wingbeat_period_s"], wingbeat, row.get("wingbeat_period_s_status"))):
             rows.append({"config": letter, "quantity": name, "paper": paper, "physics": physics, "mdpipe": measured,
-                         "mdpipe_class": row["class"], "mdpipe_notes": row["notes"]})
+                         "mdpipe_status": status, "mdpipe_class": row["class"], "mdpipe_notes": row["notes"]})
         if progress:
             progress(f"config ({letter}): {row['class']}")
     table = pd.DataFrame(rows)
@@ -136,6 +142,12 @@ def _fmt(value):
     return "0" if abs(value) < 1e-9 else f"{value:.4g}"
 
 
+def _fmt_measured(value, status):
+    """mdpipe's value, with its status where it gives the value with a caveat (not ``ok``)."""
+    shown = _fmt(value)
+    return shown if shown == "n/e" or status in (None, "ok") else f"{shown} ({status})"
+
+
 def _pct(value):
     return "" if value is None or not np.isfinite(value) else f"{100 * value:+.1f} %"
 
@@ -144,14 +156,16 @@ def markdown(table):
     """The comparison side by side, with an explanation under every quantity that differs by more than 5 %."""
     lines = ["# Paper Tables IV and V, reproduced", "",
              "`paper`: the paper's value; `physics`: what the physics predicts for the simulated scene; "
-             "`mdpipe`: what `mdpipe process` measures on it. n/e: not estimable (the row's notes say why). "
+             "`mdpipe`: what `mdpipe process` measures on it, with its status in brackets where it is given with a "
+             "caveat. n/e: not estimable (the row's notes say why). "
              "Made by `make paper`.", ""]
     explained = set()
     for quantity, group in table.groupby("quantity", sort=False):
         lines += [f"## {quantity}", "", "| config | paper | physics | mdpipe | paper vs physics | mdpipe vs physics |",
                   "|---|---|---|---|---|---|"]
         for _, r in group.iterrows():
-            lines.append(f"| {r['config']} | {_fmt(r['paper'])} | {_fmt(r['physics'])} | {_fmt(r['mdpipe'])} | "
+            lines.append(f"| {r['config']} | {_fmt(r['paper'])} | {_fmt(r['physics'])} | "
+                         f"{_fmt_measured(r['mdpipe'], r['mdpipe_status'])} | "
                          f"{_pct(r['paper_vs_physics'])} | {_pct(r['mdpipe_vs_physics'])} |")
         differences = [abs(v) for v in list(group["paper_vs_physics"]) + list(group["mdpipe_vs_physics"])
                        if v is not None and np.isfinite(v)]
