@@ -202,8 +202,9 @@ class ProcessParams:
     stft_window_s, stft_hop_s : float or None
         Spectrogram window and hop of the figure; None chooses them from the physics of the target.
     edge_window_periods, edge_hop_fraction : float
-        Spectrogram that measures the flash edges: window in chopping periods (a quarter holds one
-        flash whole), hop as a fraction of the window.
+        Spectrogram that measures the flash edges: its first window in chopping periods (a quarter holds
+        one flash whole; lengthened, up to a flash period, until the tips span 10 Doppler bins a side),
+        hop as a fraction of the window.
     dtype : str
         ``float32`` or ``float64`` for the range transform of pass 2.
     range_bins : str
