@@ -65,8 +65,8 @@ COLUMNS = (
     Column("rotor_rates_hz", "rev/s", "rate of each rotor resolved in the line combs (`;`-separated in CSV, a list in "
            "JSON), ascending", STATUS),
     Column("doppler_bw_spectrogram_hz", "Hz", "distance between the blade-flash Doppler edges (half amplitude of the "
-           "flash frames of a spectrogram a quarter chopping period long, or longer, up to a flash period, until the "
-           "tips span 10 Doppler bins a side): twice the tip Doppler", STATUS),
+           "flash frames of a spectrogram a quarter chopping period long, or longer, up to a flash period and a quarter "
+           "turn, until the tips span 10 Doppler bins a side): twice the tip Doppler", STATUS),
     Column("tip_doppler_hz", "Hz", "blade-tip Doppler 2 Omega r cos(beta) / lambda: half of "
            "`doppler_bw_spectrogram_hz`", STATUS),
     Column("blade_length_m", "m", "blade length r from Eq. 6 with the tip Doppler, the rotation rate and "

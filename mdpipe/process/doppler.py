@@ -18,6 +18,7 @@ from mdpipe.process.filters import parabolic_offset
 
 
 STFT_BLOCK_FRAMES = 4096
+STFT_BLOCK_BYTES = 8 * 2**20   # ... and at most this much of frames' transforms at once (long, zero-padded frames)
 
 
 @dataclass(frozen=True)
@@ -82,10 +83,11 @@ def spectrogram(signal, *, prf_hz, window_s, hop_s, pad=1):
     window = periodic_hann(n_window)
     n_fft = n_window * int(pad)
     power = np.empty((n_fft, len(starts)))
-    for block in range(0, len(starts), STFT_BLOCK_FRAMES):  # bounded temporaries, whatever the dwell
-        frames = views[starts[block:block + STFT_BLOCK_FRAMES]] * window
+    step = max(1, min(STFT_BLOCK_FRAMES, STFT_BLOCK_BYTES // (16 * n_fft)))
+    for block in range(0, len(starts), step):  # bounded temporaries, whatever the dwell and frame
+        frames = views[starts[block:block + step]] * window
         spectra = np.fft.fftshift(np.fft.fft(frames, n=n_fft, axis=-1), axes=-1) / window.sum()
-        power[:, block:block + STFT_BLOCK_FRAMES] = np.abs(spectra.T) ** 2
+        power[:, block:block + step] = np.abs(spectra.T) ** 2
     return Spectrogram(power=power, t_s=np.arange(first, last) * hop / prf_hz,
                        f_hz=np.fft.fftshift(np.fft.fftfreq(n_fft, 1.0 / prf_hz)),
                        window_s=n_window / prf_hz, hop_s=hop / prf_hz)

@@ -120,7 +120,8 @@ def plateau_ripple(column, f_hz, edge_hz):
     """How much a flash frame's amplitude spectrum (``column``, power) ripples between 0 Hz and its edge ``edge_hz``
     on that side: the RMS of its residual about a straight line (a uniform or tapered blade's plateau) over the inner
     60 % of the way, against the line's mean. One flash in the frame: a smooth plateau; two, ``dt`` apart: fringes
-    ``1 / dt`` apart in Doppler, as deep as the weaker flash is strong. 0 where the side holds under 8 bins."""
+    ``1 / dt`` apart in Doppler, as deep as the weaker flash is strong; fringes wider than the inner part bend it as a
+    taper would, unseen. 0 where that part holds under 8 of ``f_hz``'s bins."""
     inner = (np.abs(f_hz) > 0.2 * abs(edge_hz)) & (np.abs(f_hz) < 0.8 * abs(edge_hz)) & (f_hz * edge_hz > 0)
     if inner.sum() < 8:
         return 0.0
@@ -146,13 +147,14 @@ def _crossing(column, f_hz, index, step, level):
 
 @dataclass(frozen=True)
 class FlashEdges:
-    """Median Doppler edges of the blade flashes (None when no frame has both), frames used, frames filled; the
-    standard error of the edges' distance and the number of edges counted on the side with fewer."""
+    """Median Doppler edges of the blade flashes (None when no frame has both), frames used, frames filled, the frames'
+    length; the standard error of the edges' distance and the number of edges counted on the side with fewer."""
 
     low_hz: float
     high_hz: float
     n_frames: int
     n_filled: int
+    window_s: float            # the frames' length, whole chirps
     spread_hz: float = np.nan  # standard error of high_hz - low_hz, from the frames' scatter about their medians
     n_edges: int = 0           # edges read on the side with fewer
 
@@ -183,14 +185,15 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop
     ``differenced``: ``signal`` is a first difference; its response ``|2 sin(pi f / PRF)|^2`` is
     divided out, and the two bins around 0 Hz (where it vanishes) are left out.
     """
-    spec = spectrogram(signal, prf_hz=prf_hz, window_s=window_s, hop_s=window_s * hop_fraction, pad=EDGE_PAD)
+    pad = 1 if differenced else EDGE_PAD  # a differenced echo's frames only tell whether they fill the span
+    spec = spectrogram(signal, prf_hz=prf_hz, window_s=window_s, hop_s=window_s * hop_fraction, pad=pad)
     power, f = spec.power, spec.f_hz
     noise_level = noise_level_per_bin(noise_power, int(round(spec.window_s * prf_hz)))
     if differenced:
         response = (2 * np.sin(np.pi * f / prf_hz)) ** 2
-        near_zero = np.abs(f) <= 2 * EDGE_PAD * (f[1] - f[0])
+        near_zero = np.abs(f) <= 2 * (f[1] - f[0])
         power = np.where(near_zero[:, None], np.nan, power / np.where(near_zero, 1.0, response)[:, None])
-    total = np.nansum(power, axis=0)
+    total = np.nansum(power, axis=0) if differenced else power.sum(axis=0)  # (NaN only near 0 Hz, differenced)
     frames = np.flatnonzero((total > np.roll(total, 1)) & (total >= np.roll(total, -1))
                             & (total > np.percentile(total, FLASH_PERCENTILE)))
     lows, highs, filled, used = [], [], 0, 0
@@ -210,8 +213,8 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop
             continue
         if above[0] == 0 or above[-1] == len(f) - 1:
             continue
-        low = _tip_edge(column, f, above[0], -1, plateau=plateau, noise_level=noise_level, pad=EDGE_PAD)
-        high = _tip_edge(column, f, above[-1], 1, plateau=plateau, noise_level=noise_level, pad=EDGE_PAD)
+        low = _tip_edge(column, f, above[0], -1, plateau=plateau, noise_level=noise_level, pad=pad)
+        high = _tip_edge(column, f, above[-1], 1, plateau=plateau, noise_level=noise_level, pad=pad)
         if low is None or high is None:
             continue
         reach = max(-low, high)
@@ -221,6 +224,6 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop
         if high >= ONE_SIDED_SHARE * reach and plateau_ripple(column, f, high) <= MAX_RIPPLE:
             highs.append(high)
     if not lows or not highs:
-        return FlashEdges(None, None, used, filled)
-    return FlashEdges(float(np.median(lows)), float(np.median(highs)), used, filled,
+        return FlashEdges(None, None, used, filled, spec.window_s)
+    return FlashEdges(float(np.median(lows)), float(np.median(highs)), used, filled, spec.window_s,
                       float(np.hypot(_median_error(lows), _median_error(highs))), min(len(lows), len(highs)))

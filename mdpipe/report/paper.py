@@ -49,10 +49,10 @@ EXPLANATIONS = {
     "BW spectrogram (Hz)": (
         "mdpipe reads the flash edges (half amplitude of the broadside blade's rectangular spectrum), which sit on "
         "Eq. 6; the paper's spectrogram extent is read by eye above a display threshold, which the sinc flash and "
-        "the window widen: its values run 10-16 % above Eq. 6 (config 4: 81 %, see below). In config 4 (four rotors "
-        "at one rate, 34-67 deg apart, Gamma = 26.7) the tips span 3.3 Doppler bins a side of a quarter chopping "
-        "period, under the 8 the edges need, and a frame long enough holds the other rotors' flashes too: mdpipe's "
-        "edges read wide and carry `few_harmonics`."),
+        "the window widen: its values run 10-16 % above Eq. 6 (config 4: 81 %, see below). In config 4 (Gamma = 26.7) "
+        "the tips span 3.3 Doppler bins a side of a quarter chopping period and 6.7 of a quarter turn, the longest "
+        "frame over which their Doppler holds, under the 8 the edges need: mdpipe's edges read wide and carry "
+        "`few_harmonics`."),
     "BW power spectrum (Hz)": (
         "The paper's rule (20 dB above the spectrum's mean) measures where the line envelope drops below a level "
         "set by the whole span's mean, not the tip Doppler: here it reads below Eq. 6, by an amount that depends on "
