@@ -203,8 +203,8 @@ class ProcessParams:
         Spectrogram window and hop of the figure; None chooses them from the physics of the target.
     edge_window_periods, edge_hop_fraction : float
         Spectrogram that measures the flash edges: its first window in chopping periods (a quarter holds
-        one flash whole; lengthened, up to a flash period, until the tips span 10 Doppler bins a side),
-        hop as a fraction of the window.
+        one flash whole; lengthened, up to a flash period and a quarter turn, until the tips span 10
+        Doppler bins a side), hop as a fraction of the window.
     dtype : str
         ``float32`` or ``float64`` for the range transform of pass 2.
     range_bins : str

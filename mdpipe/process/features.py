@@ -955,10 +955,9 @@ def blade_length(demodulated, *, rate, chopping_hz, aliased, half_width_hz, prf_
                                  noise_power=noise_power, hop_fraction=params.edge_hop_fraction)
     longer = ""
     if edges.low_hz is not None:
+        longest_s = min(float(rotor.flash_period_s(rate.value, n_blades=n_blades)), MAX_EDGE_TURN / rate.value)
         edges, longer = _edges_resolved(micro, edges, prf_hz=prf_hz, noise_power=noise_power,
-                                          hop_fraction=params.edge_hop_fraction,
-                                          longest_s=min(float(rotor.flash_period_s(rate.value, n_blades=n_blades)),
-                                                        MAX_EDGE_TURN / rate.value))
+                                        hop_fraction=params.edge_hop_fraction, longest_s=longest_s)
     if edges.low_hz is None:
         note = "blade length not estimable: no flash frame with both Doppler edges inside the span"
         return withheld("no_edges", note), withheld("no_edges", note), None

@@ -90,7 +90,8 @@ def _tip_edge(column, f_hz, index, step, *, plateau, noise_level, pad=1):
     spectrum falls to a quarter of that (at most of the plateau), the two found in turn three times over.
     Where that level is not ``EDGE_TIP_DB`` above the noise (or the side holds too few bins for a trend),
     the edge found so far stands (at first, the plateau's quarter). None when the spectrum stays above
-    the level to the span's end.
+    the level to the span's end. ``pad``: the column's bins per bin of its frame (zero-padded); the trend needs 4
+    of the frame's bins.
     """
     centre = int(np.argmin(np.abs(f_hz)))
     amplitude = np.sqrt(np.maximum(np.nan_to_num(column), 0.0))

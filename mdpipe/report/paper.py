@@ -125,7 +125,8 @@ def reproduce(configs_dir, *, work_dir, figures_dir=None, progress=None):
         for name, paper, physics, measured, status in (
                 ("BW spectrogram, bird (Hz)", bw, truth["micro_doppler_spread_hz"], row.get("doppler_bw_hz"),
                  row.get("doppler_bw_hz_status")),
-                ("wingbeat period (s)", period, truth["wingbeat_period_s"], wingbeat, row.get("wingbeat_period_s_status"))):
+                ("wingbeat period (s)", period, truth["wingbeat_period_s"], wingbeat,
+                 row.get("wingbeat_period_s_status"))):
             rows.append({"config": letter, "quantity": name, "paper": paper, "physics": physics, "mdpipe": measured,
                          "mdpipe_status": status, "mdpipe_class": row["class"], "mdpipe_notes": row["notes"]})
         if progress:
