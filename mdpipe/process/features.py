@@ -17,8 +17,8 @@ from mdpipe.process import combs, doppler, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import moving_average, running_median
-from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period, power_period, ramp_repeat,
-                                    ramp_repeats_whole, ramp_train, sides_alternate)
+from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period, power_period, ramp_readable,
+                                    ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, flap_glide_share, wing_reach_hz, wingbeat
@@ -594,6 +594,16 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         note = f"rotation not estimable: {ambiguity}"
         return Rotation.withheld("ambiguous_period", note)
     chopping_hz, measured_n, pattern, least_n, flashes_only, alternating = None, None, None, None, False, False
+
+    def by_flash_times():
+        """(withheld Rotation or None, chopping frequency, flashes alternating range sides) from the aliased
+        echo's flash times alone (:func:`_span_ambiguity`, :func:`_chopping_from_flash_rate`)."""
+        held = _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power)
+        if held:
+            return held, None, False
+        odd_shown = n_blades is None and alternate(1.0 / timed_hz)
+        return None, _chopping_from_flash_rate(timed_hz, n_blades=n_blades, alternating=odd_shown), odd_shown
+
     if comb is not None:
         chopping_hz, measured_n, pattern = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
                                                         band_hz=count_band_hz, n_blades=n_blades, power=power)
@@ -633,10 +643,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # between stay under the noise (a 6-blade rotor's comb lay at 3 f_rot): k is the least count
             chopping_hz, least_n = chopping_hz * k, k
         elif aliased and not _whole_ratio(ratio):  # folded combs coincide by chance; flash times do not
-            if held := _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power):
+            held, chopping_hz, alternating = by_flash_times()
+            if held:
                 return held
-            alternating = n_blades is None and alternate(1.0 / timed_hz)
-            chopping_hz = _chopping_from_flash_rate(timed_hz, n_blades=n_blades, alternating=alternating)
             flashes_only = True
         else:
             note = (f"rotation not estimable: the line comb says {centre:.4g} Hz and the echo's "
@@ -651,10 +660,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             return Rotation.withheld("ambiguous_period", note)
         chopping_hz = confirmed
     elif timed_hz is not None and aliased:
-        if held := _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power):
+        held, chopping_hz, alternating = by_flash_times()
+        if held:
             return held
-        alternating = n_blades is None and alternate(1.0 / timed_hz)
-        chopping_hz = _chopping_from_flash_rate(timed_hz, n_blades=n_blades, alternating=alternating)
         flashes_only = True
     elif timed_hz is not None:  # the echo's period: one blade passage
         chopping_hz = np.array([timed_hz])
@@ -1129,8 +1137,10 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                         body_doppler_hz=body_doppler_hz, aliased=band.aliased)
     ramp = sides = None
     if flash_views is not None:
-        ramp = functools.cache(lambda: ramp_train(demodulated_parts(flash_views().parts, body.track_hz, prf_hz=prf_hz),
-                                                  ramp_share=ramp_share, prf_hz=prf_hz))  # None: too short a ramp
+        if ramp_readable(ramp_share):  # (else the capture is not read again for the ramp's parts)
+            ramp = functools.cache(lambda: ramp_train(demodulated_parts(flash_views().parts, body.track_hz,
+                                                                        prf_hz=prf_hz),
+                                                      ramp_share=ramp_share, prf_hz=prf_hz))
         sides = functools.cache(lambda: demodulated_parts(flash_views().sides, body.track_hz, prf_hz=prf_hz))
     turn = rotation(body.demodulated, aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                     noise_power=noise_power, n_blades=params.n_blades, dwell_s=dwell_s,

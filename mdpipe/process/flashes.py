@@ -284,6 +284,11 @@ class RampTrain:
         return _masked_autocorrelation(self.power, self.seen, len(self.power) - 1)
 
 
+def ramp_readable(ramp_share):
+    """Whether a ramp sampled over ``ramp_share`` of the chirp period is read in parts (``RAMP_MIN_SHARE``)."""
+    return ramp_share >= RAMP_MIN_SHARE
+
+
 def ramp_train(parts, *, ramp_share, prf_hz):
     """:class:`RampTrain` of ``parts`` (n_chirps, S): the body-demodulated slow time of each of S equal parts of
     the ramp (:func:`mdpipe.process.ranging.flash_views`), the ramp's sampled part ``ramp_share`` of the chirp
@@ -297,7 +302,7 @@ def ramp_train(parts, *, ramp_share, prf_hz):
     slower than any flash period read (``MAX_POWER_PERIOD_S``: the target crossing the range bin, the rotors'
     phases drifting through each other) would otherwise raise the power's correlation at every lag."""
     n_chirps, n_parts = parts.shape
-    if ramp_share < RAMP_MIN_SHARE or n_chirps < 3:
+    if not ramp_readable(ramp_share) or n_chirps < 3:
         return None
     n_chirps = min(n_chirps, int(RAMP_MAX_SLOTS * ramp_share / n_parts))
     power = np.abs(np.diff(parts[:n_chirps], axis=0)) ** 2
@@ -358,10 +363,10 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     r = train.correlation[:last + 1]
     read = r[int(lag / 4):last]
     sigma = robust_sigma(read[np.isfinite(read)]) if np.isfinite(read).sum() > 2 else 0.0
-    peak = _repeat_at(r, lag)
+    peak_lag = _best_lag(r, lag)
+    peak = np.nan if peak_lag is None else float(r[peak_lag])
     if not sigma > 0 or not peak >= POWER_SIGMAS * sigma:
         return None
-    peak_lag = int(np.nanargmax(np.where(np.abs(np.arange(len(r)) - lag) <= AROUND * lag + 1, r, np.nan)))
     later = local_maxima(r[int(1.5 * lag):last + 1]) + int(1.5 * lag)
     if len(later):
         strongest = later[np.argmax(r[later])] / lag
@@ -393,11 +398,19 @@ def ramp_repeat(train, period_chirps):
     return _repeat_at(train.correlation, lag)
 
 
+def _best_lag(r, lag):
+    """The lag at which the autocorrelation ``r`` is best within +-``AROUND`` (and a slot) of ``lag`` slots, None
+    where none of those lags is read."""
+    first = max(int(np.floor(lag * (1 - AROUND))) - 1, 1)
+    window = r[first:int(np.ceil(lag * (1 + AROUND))) + 2]
+    return first + int(np.nanargmax(window)) if np.isfinite(window).any() else None
+
+
 def _repeat_at(r, lag):
     """The autocorrelation ``r`` at its best within +-``AROUND`` (and a slot) of ``lag`` slots, NaN where none of
     those lags is read."""
-    window = r[max(int(np.floor(lag * (1 - AROUND))) - 1, 1):int(np.ceil(lag * (1 + AROUND))) + 2]
-    return float(np.max(window[np.isfinite(window)])) if np.isfinite(window).any() else np.nan
+    best = _best_lag(r, lag)
+    return np.nan if best is None else float(r[best])
 
 
 def _pair_profile(train, lag):
