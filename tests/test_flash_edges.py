@@ -106,3 +106,52 @@ def test_tapered_blades_read_in_a_frame_lengthened_to_ten_bins():
     echo, noise_power = tapered_echo(blade_m)
     _, length, _ = blade_length_of(echo, rate_hz=RATE_HZ, tip_hz=41.0 * RATE_HZ, noise_power=noise_power)
     assert length.status == "ok" and length.value == pytest.approx(blade_m, rel=0.01)
+
+
+def points_echo(*, rates_hz, phases_rad, blade_m, wavelength_m, points, snr_db=15.0):
+    """2-blade rotors of ``points`` equal point scatterers a blade (the paper's Eq. 1, root 1 cm) at ``rates_hz``, with
+    noise ``snr_db`` under the echo; (echo, noise power)."""
+    echo = 0
+    for rate_hz, phase_rad in zip(rates_hz, phases_rad):
+        theta = rotor.blade_angles_rad(T_S, rotation_rate_hz=rate_hz, n_blades=2, phase0_rad=phase_rad)
+        echo = echo + rotor.blade_echoes(theta, blade_length_m=blade_m, wavelength_m=wavelength_m,
+                                         elevation_deg=BETA_DEG, root_m=0.01, profile="points",
+                                         points_per_blade=points).sum(axis=-1)
+    noise_power = np.mean(np.abs(echo) ** 2) / 10 ** (snr_db / 10)
+    rng = np.random.default_rng(3)
+    return echo + np.sqrt(noise_power / 2) * (rng.standard_normal(len(echo)) + 1j * rng.standard_normal(len(echo))), \
+        noise_power
+
+
+def test_grating_flashes_of_point_blades_are_not_read_as_the_tips():
+    """16 points on a 30 cm blade at X band lie 18.8 mm apart, over lambda / 2 (15.3 mm): besides broadside, each blade
+    flashes in grating lobes at cos(theta) = lambda / (2 d) = 0.82, whose Doppler reaches about 0.53 of the tips'.
+    Those flashes come twice as often and outshine the broadside ones; the median of every flash's edges read the tip
+    Doppler -47 % (r was withheld only because the micro-Doppler band reached past it). The widest edges are the
+    broadside ones: r within 1 %."""
+    echo, noise_power = points_echo(rates_hz=(RATE_HZ,), phases_rad=(0.3,), blade_m=0.3, wavelength_m=WAVELENGTH_M,
+                                    points=16)
+    tip_hz = float(rotor.tip_doppler_hz(RATE_HZ, blade_length_m=0.3, wavelength_m=WAVELENGTH_M, elevation_deg=BETA_DEG))
+    _, length, _ = blade_length_of(echo, rate_hz=RATE_HZ, tip_hz=tip_hz, noise_power=noise_power)
+    assert length.status == "ok" and length.value == pytest.approx(0.3, rel=0.01)
+
+
+def test_broadside_flashes_of_rotors_apart_are_found_among_beating_frames():
+    """Four rotors of 16-point 14 cm blades at K band (points 0.7 lambda apart, grating flashes to 0.7 of the tips'
+    Doppler) at rates 59.1-61.2 rev/s: their broadside flashes mostly beat with the others' grating flashes, which
+    stand alone and smooth. The widest edges, found among all frames, pick the smooth broadside ones: the tip Doppler
+    of the mean rate within 2 % (the median of the smooth frames' edges read -36 %)."""
+    rates_hz = (60.0, 61.2, 59.1, 60.7)
+    echo, noise_power = points_echo(rates_hz=rates_hz, phases_rad=(0.3, 1.1, 2.0, 2.9), blade_m=0.14,
+                                    wavelength_m=0.0125, points=16)
+    tip_hz = float(rotor.tip_doppler_hz(np.mean(rates_hz), blade_length_m=0.14, wavelength_m=0.0125,
+                                        elevation_deg=BETA_DEG))
+    edges = spectral.flash_edges(echo, prf_hz=PRF_HZ, window_s=10 / tip_hz, noise_power=noise_power)
+    assert (edges.high_hz - edges.low_hz) / 2 == pytest.approx(tip_hz, rel=0.02)
+
+
+def test_broadside_keeps_the_smooth_edges_near_the_widest():
+    """Three smooth broadside edges near 1 kHz, six smooth grating ones at 0.53 kHz and one beating frame at 1.05 kHz:
+    the broadside ones stand."""
+    edges = [(1000.0, True), (990.0, True), (1010.0, True), (1050.0, False)] + [(530.0, True)] * 6
+    assert sorted(spectral.broadside(edges)) == [990.0, 1000.0, 1010.0]
