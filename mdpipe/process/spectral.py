@@ -199,10 +199,12 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop
     whether flashes fill the span, any window a few chirps long does.
 
     A broadside blade's echo is a sinc in time whose spectrum is a rectangle reaching the tip
-    Doppler on both sides. In each flash frame (total power in the top fifth and a local maximum)
-    the edges are where the spectrum falls to half amplitude (-6.02 dB) of the frame's plateau
-    (median over its occupied part): for any symmetric window kernel the rectangle's edge lies
-    there. A frame whose plateau reaches both ends of the span has no edges: its tips alias.
+    Doppler on both sides. In each flash frame (a local maximum of the frames' total power, in its top
+    half: ``EDGE_PERCENTILE``) the edges are where the spectrum falls to half amplitude (-6.02 dB) of the
+    frame's plateau (median over its occupied part): for any symmetric window kernel the rectangle's edge
+    lies there; each side's median is over the broadside flashes' edges (:func:`broadside`). A frame whose
+    plateau reaches both ends of the span has no edges: its tips alias (counted among the frames in the
+    power's top fifth, ``FLASH_PERCENTILE``, as ``n_filled`` of ``n_frames``).
     A blade alone flashes on one side: an odd-N rotor's blade has no opposite one, so each of its flashes
     reaches the tip Doppler on one side only (from the root's on that side), and its other side's edge is
     no tip's (0.4-0.7 of it, seen on 3-blade rotors). A side's edge counts only when it reaches
