@@ -9,6 +9,7 @@ scatterer 40 dB stronger than a drone leaves no trace in the Doppler cells.
 """
 
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -99,3 +100,12 @@ def test_static_scatterer_40_db_over_a_drone_is_not_detected(tmp_path):
     stats, drone_bin = result.stats, truth["targets"][0]["range_bin"]
     assert 10 * np.log10(stats.static_power.max() / stats.moving_power[drone_bin]) > 35
     assert [d.bin for d in result.detections] == [truth["targets"][0]["range_bin"]]
+
+
+def test_a_last_chunk_of_one_chirp_is_left_out_of_the_doppler_cells(tmp_path):
+    """513 chirps read in chunks of 256: the last holds one chirp, whose Hann window is all zeros. Only the two full
+    blocks are averaged into the Doppler cells, and nothing divides by the empty window (no warning)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        stats, _ = noise_test(tmp_path, 0, p=1e-3, n_chirps=513)
+    assert stats.doppler_blocks == 2 and np.all(np.isfinite(stats.doppler_power))

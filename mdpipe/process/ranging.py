@@ -176,14 +176,18 @@ def read_reused(reader, first, stop):
     return reader.read_counts(first, stop, out=buffer[:, :shape[1]])
 
 
-def _probe(reader, first, rows, matrix, gate, clip):
+def _probe(reader, first, rows, matrix, gate, clip, full_rows):
+    """One chunk's sums for :func:`gate_statistics`; its Doppler power only for a full block of ``full_rows`` (a
+    shorter last one is not averaged in, and one chirp's Hann window is all zeros)."""
     counts = read_reused(reader, first, first + rows)
     x = transform(counts, matrix, np.float32)  # (C, M, bins)
     g = x[:, :, gate].transpose(2, 0, 1)  # (B, C, M)
     local = g - g.mean(axis=-1, keepdims=True)
     clipped = 0 if clip is None else int(np.count_nonzero(counts >= clip) + np.count_nonzero(counts <= -clip - 1))
-    window = periodic_hann(rows).astype(np.float32)
-    doppler = np.sum(np.abs(np.fft.fft(local * window, axis=-1)) ** 2, axis=1) / np.sum(window) ** 2
+    doppler = None
+    if rows == full_rows:
+        window = periodic_hann(rows).astype(np.float32)
+        doppler = np.sum(np.abs(np.fft.fft(local * window, axis=-1)) ** 2, axis=1) / np.sum(window) ** 2
     return (x.sum(axis=1).T, np.einsum("cmb,cmb->b", x, x.conj()).real, g @ g.conj().transpose(0, 2, 1),
             np.sum(np.abs(local) ** 2, axis=(1, 2)) / rows, clipped, counts.size, doppler)
 
@@ -208,14 +212,14 @@ def gate_statistics(reader, *, window="hann", zero_pad=1, min_range_m=0.0, max_r
     chunk_power, clipped, counted = [], 0, 0
     doppler, blocks = np.zeros((len(gate), rows[0])), 0
     with threadpool_limits(limits=1, user_api="blas"), ThreadPoolExecutor(WORKERS) as pool:
-        for part in pool.map(lambda job: _probe(reader, *job, matrix, gate, clip), zip(firsts, rows)):
+        for part in pool.map(lambda job: _probe(reader, *job, matrix, gate, clip, rows[0]), zip(firsts, rows)):
             total += part[0]  # summed as they come: memory does not grow with the capture
             power += part[1]
             cross += part[2]
             chunk_power.append(part[3])
             clipped += part[4]
             counted += part[5]
-            if part[6].shape[1] == rows[0]:  # full blocks only (the last may be shorter)
+            if part[6] is not None:  # full blocks only (the last may be shorter)
                 doppler += part[6]
                 blocks += 1
     scale = params.full_scale_v_per_lsb
