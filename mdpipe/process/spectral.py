@@ -22,6 +22,9 @@ EDGE_PERCENTILE = 50       # ... and edges are read on those in its top half: a 
 EDGE_PLATEAU_DB = 15.0    # a flash whose edges are read stands this far above the noise (at 10 dB: +4 % spread)
 EDGE_TIP_DB = 6.0         # ... its spectrum's trend at an edge this far, to read the edge against the trend
 TREND_SHARES = (0.3, 0.8)  # a flash's plateau trend is fitted this far out from 0 Hz towards its edge
+TIP_BRIGHT = 1.5          # ... and read above the plateau's median where it reaches this many times its amplitude
+                          # there (tips brighter than the root: 2.0-2.3; uniform blades 1.0-1.2, their Doppler piling
+                          # up towards the tips' over a long frame)
 EDGE_PAD = 8              # flash frames transformed on this many times their bins (zero-padded): the half-amplitude
                           # crossing read on the spectrum, not interpolated between bins (a uniform blade whose tips
                           # span 7.6 bins a side read -1.6 %, now 0.0 %)
@@ -91,9 +94,13 @@ def _tip_edge(column, f_hz, index, step, *, plateau, noise_level, pad=1):
     ``plateau`` (a uniform blade's half amplitude) on the side ``step`` (-1 low, +1 high).
 
     A tapered blade's spectrum falls along its plateau with its reflectivity: a quarter of the median then
-    lies inside the tips (-9 % for a tip reflectivity of 0.22). The side's amplitude trend, fitted between
-    ``TREND_SHARES`` of the way from 0 Hz to the edge, gives the level at the edge; the edge is where the
-    spectrum falls to a quarter of that (at most of the plateau), the two found in turn three times over.
+    lies inside the tips (-9 % for a tip reflectivity of 0.22); a blade brighter at its tips rises, and a quarter
+    of the median lies outside them (+7 % for tips twice the root's, ``benchmarks/offmodel``).
+    The side's amplitude trend, fitted between ``TREND_SHARES`` of the way from 0 Hz to the edge, gives the
+    level at the edge; the edge is where the spectrum falls to a quarter of that, the two found in turn three
+    times over. A trend above the plateau's median counts only where it reaches ``TIP_BRIGHT`` times its
+    amplitude (at most the frame's peak): a uniform blade's Doppler piles up towards its tips' over a long
+    frame, and read so its r fell 1.5-2 % short.
     Where that level is not ``EDGE_TIP_DB`` above the noise (or the side holds too few bins for a trend),
     the edge found so far stands (at first, the plateau's quarter). None when the spectrum stays above
     the level to the span's end. ``pad``: the column's bins per bin of its frame (zero-padded); the trend needs 4
@@ -101,6 +108,7 @@ def _tip_edge(column, f_hz, index, step, *, plateau, noise_level, pad=1):
     """
     centre = int(np.argmin(np.abs(f_hz)))
     amplitude = np.sqrt(np.maximum(np.nan_to_num(column), 0.0))
+    peak = float(np.nanmax(column))
     level = plateau * 10 ** (-HALF_AMPLITUDE_DB / 10)
     edge_hz = _crossing(column, f_hz, index, step, level)
     for _ in range(3):
@@ -109,7 +117,8 @@ def _tip_edge(column, f_hz, index, step, *, plateau, noise_level, pad=1):
         if len(inner) < 4 * pad:
             break
         trend = np.polyfit(np.abs(f_hz[inner]), amplitude[inner], 1)
-        local = min(plateau, max(float(np.polyval(trend, abs(edge_hz))), 0.0) ** 2)
+        local = max(float(np.polyval(trend, abs(edge_hz))), 0.0) ** 2
+        local = min(peak, local) if local > TIP_BRIGHT ** 2 * plateau else min(plateau, local)
         if local < noise_level * 10 ** (EDGE_TIP_DB / 10):
             break  # the tips' level is lost in the noise
         level = local * 10 ** (-HALF_AMPLITUDE_DB / 10)
