@@ -31,3 +31,26 @@ def test_wingbeat_of_a_bird_of_flapping_wing_points(tmp_path):
     assert row["class"] == "bird", description
     assert row["wingbeat_freq_hz_status"] == "ok"
     assert row["wingbeat_freq_hz"] == pytest.approx(truth["wb"], rel=0.005)
+
+
+@pytest.mark.parametrize("sid", [43, 154, 210, 53])
+def test_wingbeat_read_off_the_body_line(tmp_path, sid):
+    """Birds whose rows lit in half the frames are the body line's main lobe (0-2 wing rows): the wings cross the
+    body's Doppler at both turns of the stroke, so those rows repeat at T / 2 (or, a slow beat in them, 2 T). Read
+    on the rows lit in a quarter of the frames (26-51 wing rows), which keep the stroke's sign: within 1 %. They
+    read 2.0, 2.0, 2.0 and 0.5 times the wingbeat, `ok`, before."""
+    _, description, truth, row, _ = run_scene(sid, tmp_path)
+    assert row["class"] == "bird", description
+    assert row["wingbeat_freq_hz_status"] == "ok"
+    assert row["wingbeat_freq_hz"] == pytest.approx(truth["wb"], rel=0.01)
+
+
+@pytest.mark.parametrize("sid", [222, 255])
+def test_a_wingbeat_comb_is_no_rotor_comb(tmp_path, sid):
+    """X-band birds beating 9.2 and 8.7 Hz: their echo holds lines at every multiple of the wingbeat, and a comb at
+    its 3rd or 11th multiple has nothing between its lines in the coarse 0.25 s spectra, where lines 9 Hz apart
+    blur. The whole dwell resolves the wingbeat's lines: no rotor comb, a bird (a drone with a chopping frequency at
+    3 and 11 times the wingbeat, `ok`, before)."""
+    _, description, truth, row, _ = run_scene(sid, tmp_path)
+    assert row["class"] == "bird", description
+    assert row["chopping_freq_hz"] is None

@@ -295,6 +295,9 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
         return None
     if folded is None:
         folded = half_width_hz >= prf_hz / 2
+    if not folded and _wingbeat_lines(lines, first.spacing_hz, half_width_hz=half_width_hz,
+                                      floor_hz=2 * coarse.resolution_hz):
+        return None  # a wingbeat's lines, every multiple of its rate under MIN_FUNDAMENTAL_HZ: no rotor's comb
     if not folded:  # folded lines fall between a comb's and fake its sub-multiples
         first = _fundamental_comb(lines, first, half_width_hz=half_width_hz, min_hz=max(min_hz, MIN_FUNDAMENTAL_HZ))
     found = [first]
@@ -308,6 +311,24 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
             break
         found.append(best)
     return tuple(c.spacing_hz for c in found)
+
+
+def _wingbeat_lines(lines, spacing_hz, *, half_width_hz, floor_hz):
+    """Whether the whole dwell's ``lines`` hold the comb at ``spacing_hz`` as part of one at a sub-multiple under
+    ``MIN_FUNDAMENTAL_HZ`` (down to ``floor_hz``, the coarse test's two bins): its contrast reaching
+    ``FUNDAMENTAL_SHARE`` of the comb's (:func:`_strong_divisors`), step 2 of :func:`find_combs` on the whole dwell.
+
+    A wingbeat's echo repeats every 1 / f_wb: lines at every k f_wb, and a comb at any odd multiple m f_wb has its
+    half-way positions half-way between them (even m lands them on lines). The coarse test's 0.25 s segments hold
+    two or three wingbeats: lines 8-9 Hz apart fall within each other's Hann main lobes (+-8 Hz) and their half-way
+    positions read lit, so the contrast at f_wb reads 0.17-0.63 of the multiple's (birds beating 8.4-9.2 Hz read as
+    combs at 3, 7 and 11 f_wb), against 0.71-0.95 on the whole dwell. A rotor's comb has nothing between its lines
+    but a differing blade's sub-lines at its turn rate (over 20 rev/s): its sub-multiples reach 1/m of its contrast.
+    """
+    divisors = np.arange(2, int(spacing_hz / floor_hz) + 1)
+    divisors = divisors[spacing_hz / divisors < MIN_FUNDAMENTAL_HZ]
+    strong = _strong_divisors(lines, spacing_hz, divisors, half_width_hz=half_width_hz)
+    return strong is not None and len(strong) > 0
 
 
 def comb_offset_hz(signal, *, prf_hz, noise_power, half_width_hz):

@@ -365,24 +365,54 @@ def _looks(frames):
     frames: a modulation of the body line alone (its main lobe's three rows) is no wing, and the line's beat with
     another (a residual line at 0 Hz, a second body) repeats it as evenly.)
     """
-    spec, frame_rate = frames.spec, frames.frame_rate
     single = None
-    for row_percentile in SIGNAL_ROW_PERCENTILES:
+    for index, row_percentile in enumerate(SIGNAL_ROW_PERCENTILES):
         if frames.weak and len(frames.lit_rows(row_percentile, wings_only=True)) < MIN_WING_ROWS:
             continue  # the body's row with weak wings' beat in it (see above)
-        r = pattern_autocorrelation(spec, detrend_frames=int(2 * frame_rate / MIN_WINGBEAT_HZ),
-                                    noise_level=frames.noise_level, row_percentile=row_percentile,
-                                    lit_db=frames.lit_db)
-        found = _period(r, frame_rate=frame_rate)
+        found = _row_set_period(frames, row_percentile)
         if found is None:
             continue
         if found.repeats >= 2 and found.strength >= MIN_PERIODICITY:
+            if len(frames.lit_rows(row_percentile, wings_only=True)) < MIN_WING_ROWS:
+                found = _stroke_signed(found, frames, SIGNAL_ROW_PERCENTILES[index + 1:])
             return _within_bursts(found, frames)
         if found.repeats == 1 and found.strength >= MIN_SINGLE_PERIODICITY and single is None:
             single = found
     if single is not None:
         return _within_bursts(single, frames)
     return _gated_period(frames)
+
+
+def _row_set_period(frames, row_percentile):
+    """The wingbeat period (:func:`_period`) in the rows of ``frames`` lit in ``100 - row_percentile`` % of them."""
+    r = pattern_autocorrelation(frames.spec, detrend_frames=int(2 * frames.frame_rate / MIN_WINGBEAT_HZ),
+                                noise_level=frames.noise_level, row_percentile=row_percentile, lit_db=frames.lit_db)
+    return _period(r, frame_rate=frames.frame_rate)
+
+
+def _stroke_signed(found, frames, wider_percentiles):
+    """``found``, a period read on rows that hold fewer than ``MIN_WING_ROWS`` wing rows (the body line's main lobe,
+    and a row or two of its skirt), or the wider row set's period where that is its double or half.
+
+    The body line's rows are sign-blind: the wings cross the body's Doppler at both turns of their stroke, and
+    the body line's modulation repeats at T / 2 whether or not the strokes differ (a bird beating 4.22 Hz read on
+    the body line's three rows at 8.64 Hz, its wing rows, 26 of them, repeating at 4.22 Hz), or at 2 T where a beat
+    of two lines in it is slow. Rows off the body line keep the stroke's sign (a row at +v lights on one stroke
+    only), so a wider row set (``wider_percentiles``) holding ``MIN_WING_ROWS`` wing rows, and seeing its period
+    repeat with ``MIN_PERIODICITY``, decides between T and its octave (within ``BLUR_AGREEMENT``); any other
+    disagreement keeps ``found`` (the wider rows hold the on and off of flapping bursts: a goose of the evaluation
+    sweep reads its wingbeat only on the rows lit in half its frames).
+    """
+    for row_percentile in wider_percentiles:
+        if len(frames.lit_rows(row_percentile, wings_only=True)) < MIN_WING_ROWS:
+            continue
+        wide = _row_set_period(frames, row_percentile)
+        if wide is None or wide.repeats < 2 or wide.strength < MIN_PERIODICITY:
+            continue
+        ratio = wide.period_s / found.period_s
+        if abs(ratio / 2 - 1) <= BLUR_AGREEMENT or abs(2 * ratio - 1) <= BLUR_AGREEMENT:
+            return wide
+    return found
 
 
 def _gated(frames):
