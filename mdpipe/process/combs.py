@@ -462,6 +462,23 @@ def blade_count_from_line_pattern(lines, spacing_hz, *, half_width_hz):
     return best
 
 
+def odd_orders_stand_out(lines, spacing_hz, *, half_width_hz):
+    """Whether the comb at ``spacing_hz`` is one at twice it about a Doppler half a spacing off 0 Hz: its odd orders
+    stand out over the even ones (the even orders' step under its trend, :func:`pattern_step` with d = 2, at most
+    ``-PATTERN_MARGIN`` with a t of ``-SUBLINE_Z``).
+
+    About its own Doppler a rotor's strongest lines are its chopping comb's, from order 0; a differing blade adds
+    weaker ones between. Demodulated half a chopping frequency off (no body line marked the hub's Doppler, and a comb
+    is as symmetric about the point half-way between two of its lines as about one of them), the chopping lines
+    fall at odd multiples of half the chopping frequency, the comb read there (six rotors of an independent
+    simulator, 2 blades given, read at half their rate, `ok`)."""
+    order = _orders(spacing_hz, half_width_hz, MAX_FINE_HARMONICS * MAX_BLADES)
+    if np.count_nonzero(order % 2 == 0) < MIN_HARMONICS:
+        return False
+    found = pattern_step(lines.at(order * spacing_hz), lines.at(-order * spacing_hz), order, 2)
+    return found is not None and found[0] <= -PATTERN_MARGIN and found[1] <= -SUBLINE_Z
+
+
 def pattern_step(positive, negative, order, d):
     """(step, t) of the scores at multiples of ``d`` over a trend, or None when too few scores for it.
 

@@ -857,8 +857,11 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     do, when that is more than twice per spacing (N > 2: a comb of equal blades at the chopping frequency
     flashes once or twice per spacing, as two blades turning at it do; :func:`_power_flashes_as`). Folded
     (aliased) combs tell N only by the power (their lines interleave orders: the pattern alone, even of the N
-    given, is not trusted).
+    given, is not trusted). An unfolded comb whose odd orders stand out is one at twice its spacing, read half a
+    spacing off its hub's Doppler (:func:`~mdpipe.process.combs.odd_orders_stand_out`).
     """
+    if not aliased and combs.odd_orders_stand_out(lines, float(spacing_hz[0]), half_width_hz=band_hz):
+        spacing_hz = 2 * spacing_hz
     pattern = combs.blade_count_from_line_pattern(lines, float(spacing_hz[0]), half_width_hz=band_hz)
     if pattern and pattern == n_blades and not aliased:
         return spacing_hz * pattern, pattern, pattern
