@@ -33,7 +33,8 @@ N_SCENES = 380
 
 
 def run_scene(sid, workdir):
-    """Simulate scene ``sid`` (or reuse its capture in ``workdir``), process it; (sid, description, truth, row)."""
+    """Simulate scene ``sid`` (or reuse its capture in ``workdir``), process it; (sid, description, truth, the row
+    nearest the scene's target in range, the class of every row)."""
     from mdpipe.params import ProcessParams
     from mdpipe.process.pipeline import process_capture
 

@@ -155,7 +155,8 @@ def bird_scene(rng, sid, band=None):
     hdg_off = np.deg2rad(rng.uniform(0, 60))
     sign = rng.choice([-1, 1])
     # radial travel is at most `travel`; receding (sign>0) starts low, approaching starts high
-    R0 = lo + travel + u_R * max(0.0, hi - lo - 2 * travel) if sign > 0 else hi - travel - u_R * max(0.0, hi - lo - 2 * travel)
+    room = max(0.0, hi - lo - 2 * travel)
+    R0 = lo + travel + u_R * room if sign > 0 else hi - travel - u_R * room
     if sign > 0 and R0 + travel > hi:   # receding bird would leave the window
         R0 = max(lo, hi - travel)
     p0 = R0 * np.array([np.cos(elev) * np.cos(az), np.cos(elev) * np.sin(az), np.sin(elev)])

@@ -31,8 +31,8 @@ EDGE_PAD = 8              # flash frames transformed on this many times their bi
 MAX_RIPPLE = 0.15         # a flash frame's plateau rippling more holds two flashes (:func:`plateau_ripple`; one
                           # flash, 15 dB over the noise: at most 0.15 in 9 frames of 10)
 ONE_SIDED_SHARE = 0.8     # a flash edge this share of the frame's other edge (from 0 Hz) or more is a tip's
-BROADSIDE_SPREAD = 0.08   # flash edges within this share of the widest ones are the broadside flashes' (:func:`broadside`;
-                          # rotors 1-4 % apart in rate all count)
+BROADSIDE_SPREAD = 0.08   # flash edges within this share of the widest ones are the broadside flashes'
+                          # (:func:`broadside`; rotors 1-4 % apart in rate all count)
 BROADSIDE_SHARE = 0.2     # ... the widest ones: the edge this share of the frames from the top (3 at least)
 
 
