@@ -451,12 +451,10 @@ def blade_count_from_line_pattern(lines, spacing_hz, *, half_width_hz):
     ``log(1 + SNR)``) with a t of ``SUBLINE_Z``, the one with the largest step is N (multiples of 2N also
     stand out, by less: the rest then holds strong lines too). None when the lines carry no such pattern.
     """
-    order = _orders(spacing_hz, half_width_hz, MAX_FINE_HARMONICS * MAX_BLADES)
+    order = _pattern_orders(spacing_hz, half_width_hz)
     best, best_step = None, PATTERN_MARGIN
     for d in range(2, MAX_BLADES + 1):
-        if np.count_nonzero(order % d == 0) < MIN_HARMONICS:
-            continue
-        found = pattern_step(lines.at(order * spacing_hz), lines.at(-order * spacing_hz), order, d)
+        found = _multiples_step(lines, spacing_hz, order, d)
         if found is not None and found[0] >= best_step and found[1] >= SUBLINE_Z:
             best, best_step = d, found[0]
     return best
@@ -472,11 +470,21 @@ def odd_orders_stand_out(lines, spacing_hz, *, half_width_hz):
     is as symmetric about the point half-way between two of its lines as about one of them), the chopping lines
     fall at odd multiples of half the chopping frequency, the comb read there (six rotors of an independent
     simulator, 2 blades given, read at half their rate, `ok`)."""
-    order = _orders(spacing_hz, half_width_hz, MAX_FINE_HARMONICS * MAX_BLADES)
-    if np.count_nonzero(order % 2 == 0) < MIN_HARMONICS:
-        return False
-    found = pattern_step(lines.at(order * spacing_hz), lines.at(-order * spacing_hz), order, 2)
+    found = _multiples_step(lines, spacing_hz, _pattern_orders(spacing_hz, half_width_hz), 2)
     return found is not None and found[0] <= -PATTERN_MARGIN and found[1] <= -SUBLINE_Z
+
+
+def _pattern_orders(spacing_hz, half_width_hz):
+    """The comb's orders a line pattern is read over (:func:`blade_count_from_line_pattern`)."""
+    return _orders(spacing_hz, half_width_hz, MAX_FINE_HARMONICS * MAX_BLADES)
+
+
+def _multiples_step(lines, spacing_hz, order, d):
+    """:func:`pattern_step` of the comb's line scores at ``order`` each side of 0 Hz, for the multiples of ``d``; None
+    where under ``MIN_HARMONICS`` of the orders are such multiples (or too few scores for a trend)."""
+    if np.count_nonzero(order % d == 0) < MIN_HARMONICS:
+        return None
+    return pattern_step(lines.at(order * spacing_hz), lines.at(-order * spacing_hz), order, d)
 
 
 def pattern_step(positive, negative, order, d):
