@@ -23,7 +23,10 @@ from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, flap_glide_share, wing_reach_hz, wingbeat
 
-BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame
+BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame ...
+BODY_KEPT_LINE_DB = 3.0      # ... or this far, where it is the strongest line on the body track in ...
+BODY_KEPT_SHARE = 0.75       # ... this share of the frames (a bird's wings stand within 6 dB of its body as they turn)
+BODY_KEPT_TRACK_BINS = 0.25  # ... and the range track moves as it says to this share of a range bin over the dwell
 BODY_FRAME_S = 0.032
 BODY_STEADY_SHARE = 0.5      # frames whose strongest line lies on the smoothed body track
 MAX_SPEED_MPS = 25.0         # birds and small drones fly slower: a faster alias of the body Doppler is not taken
@@ -151,7 +154,13 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
 
     Per frame the strongest line must stand ``BODY_LINE_DB`` above the strongest line more than two
     bins away (median over frames); otherwise (rotating parts only, or phase-locked rotors whose
-    interference skews the spectrum) there is no body line. The track is the running median of the
+    interference skews the spectrum) there is no body line, unless it stands ``BODY_KEPT_LINE_DB``, is the
+    strongest line on the body track in ``BODY_KEPT_SHARE`` of the frames, and the range ``track`` moves as its
+    Doppler says (:func:`_range_follows`): a bird's wings, as bright as its body, stand within 6 dB of it where
+    they turn (birds of an independent simulator, 94 GHz to X band, their body lines 3-6 dB over the wings' and
+    on their track in 75-100 % of the frames, read none; their range rates are now read within 0.1 m/s), while a
+    rotor's comb line, as steady, stays where the hub is (a hovering quadrotor's line at 10.9 m/s, its range
+    track still). The track is the running median of the
     frame peaks over ``BODY_TRACK_FRAMES`` frames, so a frame where a rotor line outshines the body
     does not move it; if fewer than ``BODY_STEADY_SHARE`` of the frames peak on the track, the body
     is not steady enough to demodulate. The velocity is the mean range rate over the dwell: the mean of the
@@ -171,10 +180,6 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
         masked[np.clip(peak + offset, 0, len(spec.f_hz) - 1), np.arange(power.shape[1])] = 0.0
     ratio_db = 10 * np.log10(power.max(axis=0) / np.maximum(masked.max(axis=0), np.finfo(float).tiny))
     prominence = float(np.median(ratio_db))
-    if prominence < BODY_LINE_DB:
-        return BodyMotion(None, withheld("no_body_line", f"body velocity not estimable: no body line stands out of "
-                                         f"the micro-Doppler ({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the "
-                                         "next line)"), signal)
     peaks = doppler.frame_peaks_hz(spec, prf_hz=prf_hz)
 
     def peaks_median(frames):  # the peaks' running median over an odd number of frames, at most the dwell's
@@ -183,6 +188,12 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     frame_track = peaks_median(BODY_TRACK_FRAMES)
     bin_hz = spec.f_hz[1] - spec.f_hz[0]
     on_track = float(np.mean(np.abs(doppler.fold_hz(spec.f_hz[peak] - frame_track, prf_hz=prf_hz)) <= 2 * bin_hz))
+    kept = prominence < BODY_LINE_DB  # a line that does not stand out, kept to a track the range track follows
+    if kept and not (prominence >= BODY_KEPT_LINE_DB and on_track >= BODY_KEPT_SHARE and track is not None):
+        return BodyMotion(None, withheld("no_body_line", f"body velocity not estimable: no body line stands out of "
+                                         f"the micro-Doppler ({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the "
+                                         f"next line, or {BODY_KEPT_LINE_DB:.0f} dB on a track in "
+                                         f"{BODY_KEPT_SHARE:.0%} of the frames: {on_track:.0%})"), signal)
     if on_track < BODY_STEADY_SHARE:
         return BodyMotion(None, withheld("body_unsteady", f"body velocity not estimable: the strongest line lies on "
                                          f"the body track in only {on_track:.0%} of the frames"), signal)
@@ -191,9 +202,25 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     rate_track = peaks_median(int(round(BODY_RATE_MEDIAN_S / spec.hop_s)))
     velocity = float(range_rate_from_doppler_mps(float(np.mean(np.interp(times_s, spec.t_s, rate_track))),
                                                  wavelength_m=wavelength_m))
-    return BodyMotion(doppler_track, dealias_velocity(velocity, span_mps=wavelength_m * prf_hz / 2, track=track),
-                      doppler.demodulate(signal - static_line(signal, doppler_track, prf_hz=prf_hz), doppler_track,
-                                         prf_hz=prf_hz))
+    unfolded = dealias_velocity(velocity, span_mps=wavelength_m * prf_hz / 2, track=track)
+    if kept and not _range_follows(unfolded.value, track):
+        rate = track.range_rate_mps()[0]
+        return BodyMotion(None, withheld("no_body_line", f"body velocity not estimable: no body line stands out of "
+                                         f"the micro-Doppler ({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the "
+                                         f"next line; the line kept to a track says {velocity:.3g} m/s, the range "
+                                         f"track {rate:.3g} m/s, bins of {track.bin_m:.3g} m)"), signal)
+    return BodyMotion(doppler_track, unfolded, doppler.demodulate(
+        signal - static_line(signal, doppler_track, prf_hz=prf_hz), doppler_track, prf_hz=prf_hz))
+
+
+def _range_follows(velocity_mps, track):
+    """Whether the range ``track`` (a :class:`RangeTrack`) moves at ``velocity_mps`` (None: no) to within
+    ``BODY_KEPT_TRACK_BINS`` of a range bin over its span: its fractional bins follow a body to a few per cent
+    of a bin (a flying bird's range rate read within 0.15 m/s from bins of 7.5 m over 1.8 s)."""
+    if velocity_mps is None:
+        return False
+    rate, bound = track.range_rate_mps()
+    return bool(np.isfinite(bound)) and abs(velocity_mps - rate) <= BODY_KEPT_TRACK_BINS * bound
 
 
 def _smoothed(signal, size):
@@ -551,7 +578,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     With N given, no comb is searched beyond N times the fastest rotor rate
     (:func:`mdpipe.process.combs.max_chop_hz`): six rotors' smeared lines seen 0.12 s read a 3-line comb at 1623 Hz
     for 173, with 2 blades 812 rev/s. Without a body line (``body_found`` False) the comb is first centred on the
-    Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`). Where no comb holds within an unaliased band,
+    Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`). An unfolded comb that is the harmonics of a
+    repeat slower than any rotor chops (:func:`_slow_fundamental`: a wingbeat's lines) is withheld as ``no_flashes``,
+    the wingbeat left to be read. Where no comb holds within an unaliased band,
     one of single lines each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the
     flashes' Doppler sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
     """
@@ -577,6 +606,11 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     fastest_hz = combs.max_chop_hz(n_blades)  # a comb wider than a given count's chopping at the top rate is not it
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             max_hz=fastest_hz, lines=lines)
+    if comb is not None and not aliased and (slow_hz := _slow_fundamental(lines, float(comb[0]), band_hz=band_hz,
+                                                                          dwell_s=dwell_s)):
+        note = (f"rotation not estimable: the line comb at {comb[0]:.4g} Hz holds lines as strong between its own, the "
+                f"harmonics of a repeat at {slow_hz:.3g} Hz, slower than any rotor chops (a wingbeat's)")
+        return Rotation.withheld("no_flashes", note)
     if aliased and comb is not None and (held := _span_ambiguity("folded line comb", float(comb[0]), prf_hz=prf_hz,
                                                                    dwell_s=dwell_s, power=power)):
         return held
@@ -730,6 +764,15 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     else:
         measured = Measured(rate)
     return Rotation(chopping, measured, rates, blades, source)
+
+
+def _slow_fundamental(lines, spacing_hz, *, band_hz, dwell_s):
+    """The repeat slower than ``combs.MIN_CHOP_HZ`` (held twice in ``dwell_s``) whose harmonics the comb at
+    ``spacing_hz`` is, lines between its own standing as strong (:func:`mdpipe.process.combs.lines_between`,
+    within ``band_hz``), else None. No rotor chops that slowly: a bird's wing lines, every third harmonic of its
+    11.3 Hz wingbeat read as a rotor comb at 33.9 Hz, are not a rotor's."""
+    m = combs.lines_between(lines, spacing_hz, half_width_hz=band_hz, min_hz=2.0 / dwell_s)
+    return spacing_hz / m if m and spacing_hz / m < combs.MIN_CHOP_HZ else None
 
 
 def _comb_against_power(found, comb_hz):
