@@ -192,8 +192,9 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     if kept and not (prominence >= BODY_KEPT_LINE_DB and on_track >= BODY_KEPT_SHARE and track is not None):
         return BodyMotion(None, withheld("no_body_line", f"body velocity not estimable: no body line stands out of "
                                          f"the micro-Doppler ({prominence:.1f} dB < {BODY_LINE_DB:.0f} dB above the "
-                                         f"next line, or {BODY_KEPT_LINE_DB:.0f} dB on a track in "
-                                         f"{BODY_KEPT_SHARE:.0%} of the frames: {on_track:.0%})"), signal)
+                                         f"next line; {BODY_KEPT_LINE_DB:.0f} dB for a line on its track in "
+                                         f"{BODY_KEPT_SHARE:.0%} of the frames that the range track follows: on it in "
+                                         f"{on_track:.0%})"), signal)
     if on_track < BODY_STEADY_SHARE:
         return BodyMotion(None, withheld("body_unsteady", f"body velocity not estimable: the strongest line lies on "
                                          f"the body track in only {on_track:.0%} of the frames"), signal)
