@@ -88,3 +88,13 @@ def test_a_comb_of_a_wingbeat_s_harmonics_is_no_rotor(tmp_path):
     assert row["class"] == "bird", description
     assert row["chopping_freq_hz"] is None and row["rotation_rate_hz"] is None
     assert row["wingbeat_freq_hz"] == pytest.approx(truth["wb"], rel=0.005)
+
+
+def test_a_comb_at_three_times_the_chopping_read_at_its_fundamental(tmp_path):
+    """Two K-band rotors of 2 blades (one 15 % brighter) at 5 dB: the lines of their chopping comb (84.6 Hz) at
+    orders 1-6 stand weak, and the comb read at 254 Hz, 3 times it (the rate 3x, `ok`). The lines between that
+    comb's stand as strong, and the echo's power repeats whole at 85 Hz: the comb is read at its fundamental, the
+    rate within 0.5 %."""
+    _, description, truth, row, _ = run_scene(194, tmp_path)
+    assert row["rotation_rate_hz_status"] == "ok", description
+    assert row["rotation_rate_hz"] == pytest.approx(truth["rate"], rel=0.005)

@@ -579,9 +579,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     With N given, no comb is searched beyond N times the fastest rotor rate
     (:func:`mdpipe.process.combs.max_chop_hz`): six rotors' smeared lines seen 0.12 s read a 3-line comb at 1623 Hz
     for 173, with 2 blades 812 rev/s. Without a body line (``body_found`` False) the comb is first centred on the
-    Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`). An unfolded comb that is the harmonics of a
-    repeat slower than any rotor chops (:func:`_slow_fundamental`: a wingbeat's lines) is withheld as ``no_flashes``,
-    the wingbeat left to be read. Where no comb holds within an unaliased band,
+    Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`). An unfolded comb with lines as strong between its own is
+    read at the echo's fundamental where the power flashes at it (:func:`_comb_multiple`); one slower than any rotor
+    chops (a wingbeat's lines) is withheld as ``no_flashes``, the wingbeat left to be read. Where no comb holds within an unaliased band,
     one of single lines each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the
     flashes' Doppler sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
     """
@@ -607,11 +607,15 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     fastest_hz = combs.max_chop_hz(n_blades)  # a comb wider than a given count's chopping at the top rate is not it
     comb = combs.find_combs(micro, prf_hz=prf_hz, noise_power=noise_power, half_width_hz=band_hz, min_hz=slowest_hz,
                             max_hz=fastest_hz, lines=lines)
-    if comb is not None and not aliased and (slow_hz := _slow_fundamental(lines, float(comb[0]), band_hz=band_hz,
-                                                                          dwell_s=dwell_s)):
-        note = (f"rotation not estimable: the line comb at {comb[0]:.4g} Hz holds lines as strong between its own, the "
-                f"harmonics of a repeat at {slow_hz:.3g} Hz, slower than any rotor chops (a wingbeat's)")
-        return Rotation.withheld("no_flashes", note)
+    if comb is not None and not aliased and (multiple := _comb_multiple(lines, float(comb[0]), band_hz=band_hz,
+                                                                        dwell_s=dwell_s)):
+        if comb[0] / multiple < combs.MIN_CHOP_HZ:
+            note = (f"rotation not estimable: the line comb at {comb[0]:.4g} Hz holds lines as strong between its own, "
+                    f"the harmonics of a repeat at {comb[0] / multiple:.3g} Hz, slower than any rotor chops (a "
+                    "wingbeat's)")
+            return Rotation.withheld("no_flashes", note)
+        if _power_at_fundamental(power(), float(comb[0]) / multiple, multiple):
+            comb = tuple(spacing / multiple for spacing in comb)  # the echo's fundamental
     if aliased and comb is not None and (held := _span_ambiguity("folded line comb", float(comb[0]), prf_hz=prf_hz,
                                                                    dwell_s=dwell_s, power=power)):
         return held
@@ -767,13 +771,27 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     return Rotation(chopping, measured, rates, blades, source)
 
 
-def _slow_fundamental(lines, spacing_hz, *, band_hz, dwell_s):
-    """The repeat slower than ``combs.MIN_CHOP_HZ`` (held twice in ``dwell_s``) whose harmonics the comb at
-    ``spacing_hz`` is, lines between its own standing as strong (:func:`mdpipe.process.combs.lines_between`,
-    within ``band_hz``), else None. No rotor chops that slowly: a bird's wing lines, every third harmonic of its
-    11.3 Hz wingbeat read as a rotor comb at 33.9 Hz, are not a rotor's."""
-    m = combs.lines_between(lines, spacing_hz, half_width_hz=band_hz, min_hz=2.0 / dwell_s)
-    return spacing_hz / m if m and spacing_hz / m < combs.MIN_CHOP_HZ else None
+def _comb_multiple(lines, spacing_hz, *, band_hz, dwell_s):
+    """The m (2..``combs.MAX_BLADES``) such that the comb at ``spacing_hz`` is the m-th multiple of the echo's
+    fundamental, a repeat held twice in ``dwell_s``: lines between its own stand as strong, and no every-m-th
+    stands out (:func:`mdpipe.process.combs.lines_between`, within ``band_hz``); else 0. Below
+    ``combs.MIN_CHOP_HZ`` that fundamental is no rotor's: a bird's wing lines, every third harmonic of its 11.3 Hz
+    wingbeat read as a rotor comb at 33.9 Hz. Above, it is the rotors' chopping comb where their power flashes at it
+    (:func:`_power_at_fundamental`): two K-band rotors whose first six lines stand weak read at three times it,
+    254 Hz for 84.6."""
+    return combs.lines_between(lines, spacing_hz, half_width_hz=band_hz, min_hz=2.0 / dwell_s)
+
+
+def _power_at_fundamental(found, fundamental_hz, multiple):
+    """Whether the echo's power (``found``, a :class:`~mdpipe.process.flashes.PowerPeriod` or None) repeats whole
+    at once or twice ``fundamental_hz``, below the comb at ``multiple`` times it: a rotor chopping at the
+    fundamental flashes so (twice: an odd N). Lines between a comb's own also fill in where rotors a per cent apart
+    smear their high orders (four W-band rotors chopping at 164-166 Hz, their power repeating there, showed lines
+    at a third of it)."""
+    if found is None or not found.whole:
+        return False
+    ratio = 1.0 / found.period_s / fundamental_hz
+    return any(_agrees(ratio, k) for k in (1, 2) if k < multiple)
 
 
 def _comb_against_power(found, comb_hz):
