@@ -581,7 +581,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     for 173, with 2 blades 812 rev/s. Without a body line (``body_found`` False) the comb is first centred on the
     Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`). An unfolded comb with lines as strong between its own is
     read at the echo's fundamental where the power flashes at it (:func:`_comb_multiple`); one slower than any rotor
-    chops (a wingbeat's lines) is withheld as ``no_flashes``, the wingbeat left to be read. Where no comb holds within an unaliased band,
+    chops (a wingbeat's lines) is withheld as ``no_flashes``, the wingbeat left to be read. An unfolded comb whose
+    power repeats at no whole ratio to it is read at the one chopping frequency both allow for the blade count
+    (:func:`_chopping_by_power`), else withheld (:func:`_comb_against_power`). Where no comb holds within an unaliased band,
     one of single lines each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the
     flashes' Doppler sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
     """
@@ -716,7 +718,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         note = "rotation not estimable: no periodic blade flashes"
         return Rotation.withheld("no_flashes", note)
     if not aliased and timed_hz is None and (held := _comb_against_power(power(), chopping_hz)):
-        return held
+        chopping_hz = _chopping_by_power(power(), chopping_hz,
+                                         n_blades=n_blades if n_blades is not None else measured_n)
+        if chopping_hz is None:
+            return held
     least_mps = least_tip_speed_mps(float(chopping_hz.max()), n_blades=n_blades, elevation_deg=elevation_deg)
     if not aliased and halfwidth_mps is not None and halfwidth_mps < least_mps:
         weak = _power_flashes(power(), n_blades=n_blades, alternate=alternate)
@@ -815,6 +820,29 @@ def _comb_against_power(found, comb_hz):
     note = (f"rotation not estimable: the line comb says {np.median(comb_hz):.4g} Hz and the echo's power repeats "
             f"at {1.0 / found.period_s:.4g} Hz, {ratio:.3g} times it, as no rotor with that comb does")
     return Rotation.withheld("ambiguous_period", note)
+
+
+def _chopping_by_power(found, comb_hz, *, n_blades):
+    """The chopping frequencies (``comb_hz`` over a whole m) that an unaliased comb (spacings ``comb_hz``) and the
+    echo's power (``found``, a :class:`~mdpipe.process.flashes.PowerPeriod`, repeating whole) both allow for the
+    blade count ``n_blades`` (given or measured), where they allow exactly one; else None.
+
+    N blades' power repeats whole once per chopping period, twice for an odd N, or, one blade differing, once a
+    turn (the chopping N times its rate); their comb is the chopping comb, a whole multiple m of it where the lines
+    between cancel (rotors a phase apart), or the turn rate. A 3-blade quadrotor seen 0.25 s showed its comb at
+    3 times the chopping (486 Hz) and its power repeating at twice it (326 Hz): 2/3 of the comb, which no whole
+    ratio reads, and only 162 Hz is both.
+    """
+    if n_blades is None or found is None or not found.whole:
+        return None
+    power_hz = 1.0 / found.period_s
+    centre_hz = float(np.median(comb_hz))
+    by_power = [power_hz / k for k in ((1, 2) if n_blades % 2 else (1,))] + [power_hz * n_blades]
+    by_comb = [(m, centre_hz / m) for m in range(1, combs.MAX_BLADES + 1)] + [(1.0 / n_blades, centre_hz * n_blades)]
+    both = [(m, chopping) for m, chopping in by_comb if any(_agrees(chopping / p) for p in by_power)]
+    if len({round(chopping, 6) for _, chopping in both}) != 1:
+        return None
+    return np.asarray(comb_hz, dtype=float) / both[0][0]
 
 
 def least_tip_speed_mps(chopping_hz, *, n_blades, elevation_deg):
