@@ -561,7 +561,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     rotor's value: it averages over the whole dwell); a whole-number ratio is an ambiguity and
     nothing is reported, unless the comb is unfolded, every k-th of its lines stands out and the echo's rate is
     k times its spacing: the chopping is then the echo's rate, the rate the comb's under N = k assumed (the
-    least count: one blade differing). Flash times twice a folded comb are an odd N (flashing twice per chopping
+    least count: one blade differing), or the comb is folded at a whole fraction of flash times at which the power
+    repeats whole (rotors whose lines between the comb's cancel flash a whole number of times per comb period, but
+    their power does not repeat whole at the flashes): the flash times stand. Flash times twice a folded comb are an
+    odd N (flashing twice per chopping
     period) or an even N with one blade differing (the comb lines the turn rate): the blade count,
     given or measured, tells which; without it nothing is reported. A chopping frequency that rests
     on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade
@@ -683,7 +686,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # echo's rate is the chopping; the comb a turn of k blades, one differing, or of 2k or 3k whose lines
             # between stay under the noise (a 6-blade rotor's comb lay at 3 f_rot): k is the least count
             chopping_hz, least_n = chopping_hz * k, k
-        elif aliased and not _whole_ratio(ratio):  # folded combs coincide by chance; flash times do not
+        elif aliased and (not _whole_ratio(ratio) or (ratio > 1 and _whole_multiple(power(), timed_hz) == 1)):
+            # folded combs coincide by chance; flash times do not (nor those the power repeats whole at: a comb at
+            # a whole fraction of them, its lines between cancelling, is no rotor's whose power repeats so)
             held, chopping_hz, alternating = by_flash_times()
             if held:
                 return held
