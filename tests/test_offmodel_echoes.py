@@ -98,3 +98,12 @@ def test_a_comb_at_three_times_the_chopping_read_at_its_fundamental(tmp_path):
     _, description, truth, row, _ = run_scene(194, tmp_path)
     assert row["rotation_rate_hz_status"] == "ok", description
     assert row["rotation_rate_hz"] == pytest.approx(truth["rate"], rel=0.005)
+
+
+def test_a_period_made_whole_by_the_chirps_is_withheld(tmp_path):
+    """Six 3-blade rotors at one rate at 77 GHz, -5 dB, their tips reaching 92 % of the span: the echo, decorrelating
+    within a chirp, repeats only at lags near a whole number of chirps, and its period, 34.8 chirps,
+    showed at 4 times it (139.0): a quarter of the rate, `ok`. The period of such a band is withheld."""
+    _, description, truth, row, _ = run_scene(31, tmp_path)
+    assert row["chopping_freq_hz"] is None and row["rotation_rate_hz"] is None, description
+    assert row["rotation_rate_hz_status"] == "ambiguous_period"

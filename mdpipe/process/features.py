@@ -52,6 +52,7 @@ TILT_TOLERANCE = 0.03        # blade length ok only where that tilt moves cos(be
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
 TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
+WIDE_BAND_SHARE = 0.75       # an unaliased band over this share of the span decorrelates within a chirp
 MAX_RAMP_DIVISOR = 6         # a power period not whole within the ramp: its halves to sixths are tried there
 POWER_COMB_TOLERANCE = 0.1   # an unaliased comb and its echo's power rate are a whole ratio apart within 10 %: rotors
                              # apart in rate (chopping at 123-134 Hz, the power repeated with the fastest, 133.1 Hz,
@@ -586,7 +587,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     read at the echo's fundamental where the power flashes at it (:func:`_comb_multiple`); one slower than any rotor
     chops (a wingbeat's lines) is withheld as ``no_flashes``, the wingbeat left to be read. An unfolded comb whose
     power repeats at no whole ratio to it is read at the one chopping frequency both allow for the blade count
-    (:func:`_chopping_by_power`), else withheld (:func:`_comb_against_power`). Where no comb holds within an unaliased band,
+    (:func:`_chopping_by_power`), else withheld (:func:`_comb_against_power`). The echo's period alone, in a band
+    that fills most of the span, is withheld (:func:`_period_made_whole`). Where no comb holds within an unaliased band,
     one of single lines each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the
     flashes' Doppler sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
     """
@@ -711,6 +713,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             return held
         flashes_only = True
     elif timed_hz is not None:  # the echo's period: one blade passage
+        if held := _period_made_whole(timed_hz, band_hz=band_hz, prf_hz=prf_hz):
+            return held
         chopping_hz = np.array([timed_hz])
     if chopping_hz is None:
         weak = _power_flashes(power(), n_blades=n_blades, alternate=alternate)
@@ -824,6 +828,21 @@ def _comb_against_power(found, comb_hz):
         return None
     note = (f"rotation not estimable: the line comb says {np.median(comb_hz):.4g} Hz and the echo's power repeats "
             f"at {1.0 / found.period_s:.4g} Hz, {ratio:.3g} times it, as no rotor with that comb does")
+    return Rotation.withheld("ambiguous_period", note)
+
+
+def _period_made_whole(period_hz, *, band_hz, prf_hz):
+    """Rotation withheld as ``ambiguous_period`` when the echo's period (at ``period_hz``, no comb beside it) may be
+    a whole multiple of its own, made whole by the chirps: in a band of half-width ``band_hz`` over
+    ``WIDE_BAND_SHARE`` of the span's, the echo decorrelates over a fraction of a chirp, so that its autocorrelation
+    peaks only at lags near a whole number of chirps, and a period of 34.8 chirps shows at 4 of them, 139.0 (six
+    3-blade rotors at one rate, their tips reaching 92 % of the span, read at a quarter of their rate); else None."""
+    if band_hz < WIDE_BAND_SHARE * prf_hz / 2:
+        return None
+    chirps = prf_hz / period_hz
+    note = (f"rotation not estimable: the echo repeats every {chirps:.1f} chirps ({period_hz:.4g} Hz), but its band "
+            f"fills {band_hz / (prf_hz / 2):.0%} of the span: it decorrelates within a chirp, and a period of a "
+            "fraction of it that is no whole number of chirps does not show; another PRF tells")
     return Rotation.withheld("ambiguous_period", note)
 
 
