@@ -565,10 +565,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     least count: one blade differing), or the comb is folded at a whole fraction of flash times at which the power
     repeats whole (rotors whose lines between the comb's cancel flash a whole number of times per comb period, but
     their power does not repeat whole at the flashes): the flash times stand. Flash times twice a folded comb are an
-    odd N (flashing twice per chopping
-    period) or an even N with one blade differing (the comb lines the turn rate): the blade count,
-    given or measured, tells which; without it nothing is reported. A chopping frequency that rests
-    on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade
+    odd N (flashing twice per chopping period) or an even N with one blade differing (the comb lines the turn
+    rate): the blade count, given or measured, tells which; without it nothing is reported. A chopping frequency
+    that rests on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade
     turning that fast could make at the elevation given (:func:`least_tip_speed_mps`) is not a rotor.
     A comb whose every k-th line stands out, read neither as a turn (blade count given or measured, see
     :func:`_comb_blades`) nor by the echo's rate, is a turn of k blades (one differing, the chopping k times the
@@ -583,12 +582,13 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     With N given, no comb is searched beyond N times the fastest rotor rate
     (:func:`mdpipe.process.combs.max_chop_hz`): six rotors' smeared lines seen 0.12 s read a 3-line comb at 1623 Hz
     for 173, with 2 blades 812 rev/s. Without a body line (``body_found`` False) the comb is first centred on the
-    Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`). An unfolded comb with lines as strong between its own is
-    read at the echo's fundamental where the power flashes at it (:func:`_comb_multiple`); one slower than any rotor
-    chops (a wingbeat's lines) is withheld as ``no_flashes``, the wingbeat left to be read. An unfolded comb whose
-    power repeats at no whole ratio to it is read at the one chopping frequency both allow for the blade count
-    (:func:`_chopping_by_power`), else withheld (:func:`_comb_against_power`). The echo's period alone, in a band
-    that fills most of the span, is withheld (:func:`_period_made_whole`). Where no comb holds within an unaliased band,
+    Doppler it lies about (:func:`mdpipe.process.combs.comb_offset_hz`). An unfolded comb with lines as strong
+    between its own is read at the echo's fundamental where the power flashes at it (:func:`_comb_multiple`); one
+    slower than any rotor chops (a wingbeat's lines) is withheld as ``no_flashes``, the wingbeat left to be read. An
+    unfolded comb whose power repeats at no whole ratio to it is read at the one chopping frequency both allow for
+    the blade count (:func:`_chopping_by_power`), else withheld (:func:`_comb_against_power`). The echo's period
+    alone, in a band that fills most of the span, is withheld (:func:`_period_made_whole`). Where no comb holds
+    within an unaliased band,
     one of single lines each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the
     flashes' Doppler sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
     """
@@ -847,9 +847,9 @@ def _period_made_whole(period_hz, *, band_hz, prf_hz):
 
 
 def _chopping_by_power(found, comb_hz, *, n_blades):
-    """The chopping frequencies (``comb_hz`` over a whole m) that an unaliased comb (spacings ``comb_hz``) and the
-    echo's power (``found``, a :class:`~mdpipe.process.flashes.PowerPeriod`, repeating whole) both allow for the
-    blade count ``n_blades`` (given or measured), where they allow exactly one; else None.
+    """The chopping frequencies (the comb's spacings ``comb_hz`` over a whole m, or N times them) that an unaliased
+    comb and the echo's power (``found``, a :class:`~mdpipe.process.flashes.PowerPeriod`, repeating whole) both
+    allow for the blade count ``n_blades`` (given or measured), where they allow exactly one; else None.
 
     N blades' power repeats whole once per chopping period, twice for an odd N, or, one blade differing, once a
     turn (the chopping N times its rate); their comb is the chopping comb, a whole multiple m of it where the lines
