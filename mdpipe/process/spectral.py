@@ -233,9 +233,10 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop
         near_zero = np.abs(f) <= 2 * (f[1] - f[0])
         power = np.where(near_zero[:, None], np.nan, power / np.where(near_zero, 1.0, response)[:, None])
     total = np.nansum(power, axis=0) if differenced else power.sum(axis=0)  # (NaN only near 0 Hz, differenced)
-    frames = np.flatnonzero((total > np.roll(total, 1)) & (total >= np.roll(total, -1))
-                            & (total > np.percentile(total, FLASH_PERCENTILE if differenced else EDGE_PERCENTILE)))
-    strong = total[frames] > np.percentile(total, FLASH_PERCENTILE)
+    flash_level = np.percentile(total, FLASH_PERCENTILE)
+    edge_level = flash_level if differenced else np.percentile(total, EDGE_PERCENTILE)
+    frames = np.flatnonzero((total > np.roll(total, 1)) & (total >= np.roll(total, -1)) & (total > edge_level))
+    strong = total[frames] > flash_level
     lows, highs, filled, used = [], [], 0, 0
     for frame, counted in zip(frames, strong):
         # the noise adds its level to every bin: left in, it lifts the flank outside the edges and a weak
