@@ -107,3 +107,27 @@ def test_a_period_made_whole_by_the_chirps_is_withheld(tmp_path):
     _, description, truth, row, _ = run_scene(31, tmp_path)
     assert row["chopping_freq_hz"] is None and row["rotation_rate_hz"] is None, description
     assert row["rotation_rate_hz_status"] == "ambiguous_period"
+
+
+def test_a_bird_whose_power_repeats_in_part_is_no_drone(tmp_path):
+    """An X-band bird flying 8.2 m/s, beating 12.1 Hz, 0 dB: its power, wing and body lines beating, repeats in
+    part every 3.7 ms, taken for blade flashes whose period is ambiguous (a drone, before). Its rows end within
+    3.2 m/s of the body line, where blade tips would light them out to tens of m/s: a bird, within 0.5 %."""
+    _, description, truth, row, _ = run_scene(378, tmp_path)
+    assert row["class"] == "bird", description
+    assert row["rotation_rate_hz_status"] == "not_rotor"
+    assert row["wingbeat_freq_hz_status"] == "ok"
+    assert row["wingbeat_freq_hz"] == pytest.approx(truth["wb"], rel=0.005)
+
+
+@pytest.mark.parametrize("sid, what", [
+    (110, "two 3-blade rotors at one rate, 77 GHz: the echo beats at 9.5 Hz within a 7.9 m/s band"),
+    (362, "one 2-blade rotor of rough, unequal blades at 20 deg, 77 GHz: it beats at 19.4 Hz within 2.3 m/s"),
+])
+def test_a_drone_that_beats_like_wings_stays_a_drone(tmp_path, sid, what):
+    """Drones whose power repeats in part and whose echo also beats like wings within a wing-like band: their faint
+    rows are not seen to end within wings' reach (blades light them beyond it), so the flashes stand: a drone."""
+    _, description, truth, row, _ = run_scene(sid, tmp_path)
+    assert row["class"] == "drone", description
+    assert row["rotation_rate_hz_status"] == "ambiguous_period"
+    assert row["wingbeat_freq_hz"] is None

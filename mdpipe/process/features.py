@@ -1174,6 +1174,38 @@ def _wing_reach_mps(demodulated, *, prf_hz, noise_power, wavelength_m):
     return None if reach_hz is None else abs(_speed_mps(reach_hz, wavelength_m))
 
 
+def _least_wing_spread_mps(body_velocity, *, dwell_s):
+    """Whether the body flies (``MIN_FLIGHT_SPEED_MPS``, or ``MIN_FLIGHT_DISTANCE_M`` in the ``dwell_s``), and the
+    least half-width (m/s) its wings may spread: ``MIN_FLYING_WING_SPREAD_MPS`` if it flies, else
+    ``MIN_WING_SPREAD_MPS``."""
+    speed_mps = None if body_velocity.value is None else abs(body_velocity.value)
+    flying = speed_mps is not None and (speed_mps >= MIN_FLIGHT_SPEED_MPS
+                                        or speed_mps * dwell_s >= MIN_FLIGHT_DISTANCE_M)
+    return flying, MIN_FLYING_WING_SPREAD_MPS if flying else MIN_WING_SPREAD_MPS
+
+
+def _within_wing_reach(reach_mps, least_mps):
+    """Whether a wing reach (m/s, or None: unknown) lies between ``least_mps`` and ``DRONE_SPREAD_MPS``."""
+    return reach_mps is not None and least_mps <= reach_mps <= DRONE_SPREAD_MPS
+
+
+def _wings_over_power_repeat(turn, beat, *, body_velocity, dwell_s, reach_mps):
+    """The rotation ``turn`` withheld as ``ambiguous_period`` (blade flashes whose period the echo leaves open), or
+    ``not_rotor`` where the echo beats like wings (``beat``, accepted by :func:`wings`) and its faint rows end within
+    the reach of wings (``reach_mps()``, measured, between the least wing spread and ``DRONE_SPREAD_MPS``): blade tips
+    move at 20-150 m/s and light the rows of an unaliased band out to their Doppler, even flashing a few dB over the
+    noise (the drones of three benchmarks whose reach was read: 41-208 m/s), while a bird's partial power repeat is
+    its wing and body lines beating (four birds of 7-14 Hz wingbeats at X, 77 and 94 GHz, flying 8-15 m/s: their
+    power repeated in part every 0.9-3.7 ms, their rows reached 1.2-3.2 m/s). Returns the rotation and whether the
+    beat stands."""
+    if beat.value is None or not _within_wing_reach(reach_mps(), _least_wing_spread_mps(body_velocity,
+                                                                                        dwell_s=dwell_s)[1]):
+        return turn, False
+    note = (f"rotation not estimable: the echo's power repeats in part, but it beats at {beat.value:.3g} Hz and its "
+            f"rows end within {reach_mps():.2g} m/s of the body line, as wings do: blade tips would reach further")
+    return Rotation.withheld("not_rotor", note), True
+
+
 def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None, reach_mps=lambda: None):
     """A repeating micro-Doppler is a wingbeat only if its spread is that of wings (m/s, wavelength-free).
 
@@ -1195,13 +1227,9 @@ def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None, reach_mps=
     if beat.value is None:
         return beat
     described = described or f"a micro-Doppler repeating at {beat.value:.3g} Hz"
-    speed_mps = None if body_velocity.value is None else abs(body_velocity.value)
-    flying = speed_mps is not None and (speed_mps >= MIN_FLIGHT_SPEED_MPS
-                                        or speed_mps * dwell_s >= MIN_FLIGHT_DISTANCE_M)
-    low = MIN_FLYING_WING_SPREAD_MPS if flying else MIN_WING_SPREAD_MPS
+    flying, low = _least_wing_spread_mps(body_velocity, dwell_s=dwell_s)
     if halfwidth.value is None or (halfwidth.status == OK and halfwidth.value < low):
-        reach = reach_mps()
-        if reach is not None and low <= reach <= DRONE_SPREAD_MPS:
+        if _within_wing_reach(reach_mps(), low):
             return beat
     if halfwidth.value is None:
         return withheld("not_applicable", f"{described}, but no band above the noise to tell wings from swaying "
@@ -1270,7 +1298,9 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,
                                       noise_power=noise_power, params=params, n_blades=turn.n_blades)
-    if turn.chopping.value is not None or turn.chopping.status in ROTOR_EVIDENCE:
+    wings_may_repeat = (turn.chopping.value is None and turn.chopping.status == "ambiguous_period"
+                        and not band.aliased)  # (a partial power repeat: see _wings_over_power_repeat)
+    if turn.chopping.value is not None or (turn.chopping.status in ROTOR_EVIDENCE and not wings_may_repeat):
         beat = flaps = withheld("not_applicable", "")  # blade flashes exclude a bird
     elif turn.chopping.status == "not_rotor":  # a comb spaced over any wingbeat (combs.MIN_CHOP_HZ up)
         beat = flaps = withheld("not_applicable", "no wingbeat read: a line comb repeats the echo faster than wings "
@@ -1285,6 +1315,11 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         flaps = wings(flaps, band.halfwidth, body.velocity, dwell_s=dwell_s, reach_mps=reach,
                       described=flaps.value is not None and f"a micro-Doppler in bursts over {flaps.value:.0%} of the "
                       "dwell, dark between them,")
+        if wings_may_repeat:
+            turn, beating = _wings_over_power_repeat(turn, beat, body_velocity=body.velocity, dwell_s=dwell_s,
+                                                     reach_mps=reach)
+            if not beating:
+                beat = flaps = withheld("not_applicable", "")  # blade flashes exclude a bird
     rate_hz = turn.rate.value
     row = {
         **_columns("snr_db", snr_db),
