@@ -1194,7 +1194,7 @@ def _wings_over_power_repeat(turn, beat, *, body_velocity, dwell_s, reach_mps):
     ``not_rotor`` where the echo beats like wings (``beat``, accepted by :func:`wings`) and its faint rows end within
     the reach of wings (``reach_mps()``, measured, between the least wing spread and ``DRONE_SPREAD_MPS``): blade tips
     move at 20-150 m/s and light the rows of an unaliased band out to their Doppler, even flashing a few dB over the
-    noise (the drones of three benchmarks whose reach was read: 41-208 m/s), while a bird's partial power repeat is
+    noise (the drones of three benchmarks whose reach was read: 24-208 m/s), while a bird's partial power repeat is
     its wing and body lines beating (four birds of 7-14 Hz wingbeats at X, 77 and 94 GHz, flying 8-15 m/s: their
     power repeated in part every 0.9-3.7 ms, their rows reached 1.2-3.2 m/s). Returns the rotation and whether the
     beat stands."""
