@@ -1189,20 +1189,20 @@ def _within_wing_reach(reach_mps, least_mps):
     return reach_mps is not None and least_mps <= reach_mps <= DRONE_SPREAD_MPS
 
 
-def _wings_over_power_repeat(turn, beat, *, body_velocity, dwell_s, reach_mps):
-    """The rotation ``turn`` withheld as ``ambiguous_period`` (blade flashes whose period the echo leaves open), or
-    ``not_rotor`` where the echo beats like wings (``beat``, accepted by :func:`wings`) and its faint rows end within
-    the reach of wings (``reach_mps()``, measured, between the least wing spread and ``DRONE_SPREAD_MPS``): blade tips
-    move at 20-150 m/s and light the rows of an unaliased band out to their Doppler, even flashing a few dB over the
-    noise (the drones of three benchmarks whose reach was read: 24-208 m/s), while a bird's partial power repeat is
-    its wing and body lines beating (four birds of 7-14 Hz wingbeats at X, 77 and 94 GHz, flying 8-15 m/s: their
-    power repeated in part every 0.9-3.7 ms, their rows reached 1.2-3.2 m/s). Returns the rotation and whether the
-    beat stands."""
+def _wings_over_ambiguous_period(turn, beat, *, body_velocity, dwell_s, reach_mps):
+    """The rotation ``turn`` of an unaliased band, withheld as ``ambiguous_period`` (blade flashes whose period the
+    echo leaves open), or ``not_rotor`` where the echo beats like wings (``beat``, accepted by :func:`wings`) and its
+    faint rows end within the reach of wings (``reach_mps()``, measured, between the least wing spread and
+    ``DRONE_SPREAD_MPS``). Blade tips move at 20-150 m/s and light the rows of an unaliased band out to their Doppler,
+    even flashing a few dB over the noise (the drones of three benchmarks whose flashes' period was ambiguous and whose
+    reach was read: 24-208 m/s); a bird's power may repeat in part as its wing and body lines beat (four birds of
+    7-14 Hz wingbeats at X, 77 and 94 GHz, flying 8-15 m/s: every 0.9-3.7 ms, their rows reaching 1.2-3.2 m/s).
+    Returns the rotation and whether the beat stands."""
     if beat.value is None or not _within_wing_reach(reach_mps(), _least_wing_spread_mps(body_velocity,
                                                                                         dwell_s=dwell_s)[1]):
         return turn, False
-    note = (f"rotation not estimable: the echo's power repeats in part, but it beats at {beat.value:.3g} Hz and its "
-            f"rows end within {reach_mps():.2g} m/s of the body line, as wings do: blade tips would reach further")
+    note = (f"rotation not estimable: the echo repeats, but not as blade flashes do: it beats at {beat.value:.3g} Hz "
+            f"and its rows end within {reach_mps():.2g} m/s of the body line, as wings do (blade tips reach further)")
     return Rotation.withheld("not_rotor", note), True
 
 
@@ -1299,7 +1299,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                       wavelength_m=wavelength_m,
                                       noise_power=noise_power, params=params, n_blades=turn.n_blades)
     wings_may_repeat = (turn.chopping.value is None and turn.chopping.status == "ambiguous_period"
-                        and not band.aliased)  # (a partial power repeat: see _wings_over_power_repeat)
+                        and not band.aliased)  # (or wings' beat: see _wings_over_ambiguous_period)
     if turn.chopping.value is not None or (turn.chopping.status in ROTOR_EVIDENCE and not wings_may_repeat):
         beat = flaps = withheld("not_applicable", "")  # blade flashes exclude a bird
     elif turn.chopping.status == "not_rotor":  # a comb spaced over any wingbeat (combs.MIN_CHOP_HZ up)
@@ -1316,7 +1316,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                       described=flaps.value is not None and f"a micro-Doppler in bursts over {flaps.value:.0%} of the "
                       "dwell, dark between them,")
         if wings_may_repeat:
-            turn, beating = _wings_over_power_repeat(turn, beat, body_velocity=body.velocity, dwell_s=dwell_s,
+            turn, beating = _wings_over_ambiguous_period(turn, beat, body_velocity=body.velocity, dwell_s=dwell_s,
                                                      reach_mps=reach)
             if not beating:
                 beat = flaps = withheld("not_applicable", "")  # blade flashes exclude a bird
