@@ -21,7 +21,8 @@ from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period
                                     ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, find_period
 from mdpipe.process.validity import OK, Measured, withheld
-from mdpipe.process.wingbeat import MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, flap_glide_share, wing_reach_hz, wingbeat
+from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, Octave, flap_glide_share, wing_reach_hz,
+                                     wingbeat)
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame ...
 BODY_KEPT_LINE_DB = 3.0      # ... or this far, where it is the strongest line on the body track in ...
@@ -1152,6 +1153,11 @@ def _edges_resolved(micro, edges, *, prf_hz, noise_power, hop_fraction, longest_
 def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     """Wingbeat frequency (Hz) of a bird's body-demodulated echo, from two wingbeats in the dwell on."""
     beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz)
+    if isinstance(beat, Octave):
+        return Measured(1.0 / beat.period_s, "ambiguous_period",
+                        f"wingbeat {1.0 / beat.period_s:.3g} Hz or twice it: read in frames of two lengths, the wing "
+                        f"pattern repeats every {beat.short_s:.3g} s and every {beat.period_s:.3g} s (the rows' "
+                        "stroke sign, blind near the body line, would tell)")
     if beat is not None:
         return Measured(1.0 / beat.period_s)
     note = (f"no wingbeat between {max(MIN_WINGBEAT_HZ, 2.0 / dwell_s):.2g} and {MAX_WINGBEAT_HZ:g} Hz "
