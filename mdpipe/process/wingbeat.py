@@ -206,7 +206,7 @@ def _period(r, *, frame_rate):
 
 def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
     """Wingbeat period of a body-demodulated echo (noise ``noise_power`` per chirp): a
-    :class:`~mdpipe.process.periodicity.Period`, or None.
+    :class:`~mdpipe.process.periodicity.Period`, an :class:`Octave` (two looks an octave apart), or None.
 
     The spectrogram frame is ``FRAME_S``, or shorter where the micro-Doppler band (``band_hz`` wide) still
     holds ``BAND_BINS`` Doppler bins at the shorter frame (down to ``MIN_FRAME_S``); see :func:`_looks`. A
