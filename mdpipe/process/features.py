@@ -1204,7 +1204,8 @@ def _wings_over_ambiguous_period(turn, beat, *, body_velocity, dwell_s, reach_mp
     even flashing a few dB over the noise (the drones of three benchmarks whose flashes' period was ambiguous and whose
     reach was read: 24-208 m/s); a bird's power may repeat in part as its wing and body lines beat (four birds of
     7-14 Hz wingbeats at X, 77 and 94 GHz, flying 8-15 m/s: every 0.9-3.7 ms, their rows reaching 1.2-3.2 m/s).
-    Returns the rotation and whether the beat stands."""
+    A wingbeat read an octave apart (``ambiguous_period``, :class:`~mdpipe.process.wingbeat.Octave`) counts: a
+    wing-like beat either way. Returns the rotation and whether the beat stands."""
     if beat.value is None or not _within_wing_reach(reach_mps(), _least_wing_spread_mps(body_velocity,
                                                                                         dwell_s=dwell_s)[1]):
         return turn, False
@@ -1324,7 +1325,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                       "dwell, dark between them,")
         if wings_may_repeat:
             turn, beating = _wings_over_ambiguous_period(turn, beat, body_velocity=body.velocity, dwell_s=dwell_s,
-                                                     reach_mps=reach)
+                                                         reach_mps=reach)
             if not beating:
                 beat = flaps = withheld("not_applicable", "")  # blade flashes exclude a bird
     rate_hz = turn.rate.value

@@ -18,9 +18,11 @@ STATUS_CODES = {
     "dwell_short": "the dwell holds too few periods of what is measured",
     "no_flashes": "no periodic blade flashes (no line comb) in the echo",
     "ambiguous_period": ("periods a whole multiple apart (two estimators, flashes seen only in the power's "
-                         "period, which may be a multiple of theirs, or a comb whose every N-th line stands out: "
-                         "a turn or a chopping comb); the dwell does not tell which"),
-    "not_rotor": "the echo is periodic, but too narrow in Doppler for blades turning at that rate",
+                         "period, which may be a multiple of theirs, a comb whose every N-th line stands out: "
+                         "a turn or a chopping comb, or a wingbeat whose two looks read an octave apart); the dwell "
+                         "does not tell which"),
+    "not_rotor": ("the echo is periodic, but too narrow in Doppler for blades turning at that rate, or its rows end "
+                  "within the reach of wings"),
     "assumed_blades": "depends on the blade count, which the echo does not tell and the user did not give",
     "assumed_elevation": "depends on the rotor plane's elevation beta, which was not given: beta = 0 assumed",
     "blade_conflict": "the blade count given contradicts the echo (odd/even flashes or blade imbalance lines)",
