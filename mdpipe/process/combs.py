@@ -257,7 +257,9 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
     2. Its fundamental (:func:`fundamental_hz`) must be at least ``MIN_FUNDAMENTAL_HZ``: finer lines
        are a bird's wingbeat (up to 20 Hz) or a swaying branch, not blades (a rotor turns 20 times a
        second and more).
-    3. Rotors, on the whole-dwell spectrum: the best comb near the coarse one, refined, its lines
+    3. Rotors, on the whole-dwell spectrum: the best comb near the coarse one (within a third of a coarse
+       bin; for an unfolded band, where none stands there, within a bin: the coarse comb of rotors a few per
+       cent apart is their blend, four at 137.5-143.2 Hz read 141.7 Hz in 4 Hz bins), refined, its lines
        removed; then again within ``+-ROTOR_SPREAD`` while a comb reaches ``ROTOR_SHARE`` of the first
        one's contrast with ``t >= COMB_T``. The combs are scored over every order in the band; when the
        first one then falls short of ``COMB_T``, over the extent of orders (``MAX_COARSE_HARMONICS``
@@ -287,14 +289,17 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
         return None
     if lines is None:
         lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
-    width = coarse.resolution_hz / MIN_HARMONICS
-    first, held = _search(lines, guess - width, guess + width, half_width_hz=half_width_hz), False
-    if first is None or first.t < COMB_T:  # the comb may hold to fewer orders than the band has (rotors apart)
-        first, held = _held_search(lines, guess - width, guess + width, half_width_hz=half_width_hz), True
-    if first is None or first.t < COMB_T:
-        return None
     if folded is None:
         folded = half_width_hz >= prf_hz / 2
+    # the coarse comb's spacing, to a third of its bins; or, unfolded, a blend of rotors' up to a bin off
+    for width in (coarse.resolution_hz / MIN_HARMONICS,) + (() if folded else (coarse.resolution_hz,)):
+        first, held = _search(lines, guess - width, guess + width, half_width_hz=half_width_hz), False
+        if first is None or first.t < COMB_T:  # the comb may hold to fewer orders than the band has (rotors apart)
+            first, held = _held_search(lines, guess - width, guess + width, half_width_hz=half_width_hz), True
+        if first is not None and first.t >= COMB_T:
+            break
+    if first is None or first.t < COMB_T:
+        return None
     if not folded and _wingbeat_lines(lines, first.spacing_hz, half_width_hz=half_width_hz,
                                       floor_hz=2 * coarse.resolution_hz):
         return None  # a wingbeat's lines, every multiple of its rate under MIN_FUNDAMENTAL_HZ: no rotor's comb
