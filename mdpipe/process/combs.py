@@ -179,6 +179,11 @@ def _search(lines, low_hz, high_hz, *, half_width_hz, max_points=MAX_GRID_POINTS
     return best
 
 
+def _at_edge(spacing_hz, low_hz, high_hz):
+    """Whether ``spacing_hz`` lies within ``EDGE_SHARE`` of the search window ``[low_hz, high_hz]``'s edges."""
+    return min(spacing_hz - low_hz, high_hz - spacing_hz) < EDGE_SHARE * (high_hz - low_hz)
+
+
 def _held_search(lines, low_hz, high_hz, *, half_width_hz):
     """:func:`_search` on the orders where the comb holds: the extent (``MAX_COARSE_HARMONICS`` orders and up)
     of the best t at the centre, then at the spacing found (one fixed extent for every spacing compared:
@@ -189,7 +194,7 @@ def _held_search(lines, low_hz, high_hz, *, half_width_hz):
         extent = int(comb_statistics(lines, spacing_hz, half_width_hz=half_width_hz, limit=MAX_FINE_HARMONICS,
                                      min_orders=MAX_COARSE_HARMONICS)[2][0])
         best = _search(lines, low_hz, high_hz, half_width_hz=half_width_hz, max_orders=max(extent, MIN_HARMONICS))
-        if best is None or min(best.spacing_hz - low_hz, high_hz - best.spacing_hz) < EDGE_SHARE * (high_hz - low_hz):
+        if best is None or _at_edge(best.spacing_hz, low_hz, high_hz):
             return None  # the best at the window's edge: the comb lies beyond it, if anywhere
         spacing_hz = best.spacing_hz
     return best
@@ -291,14 +296,21 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
         lines = line_spectrum(signal, prf_hz=prf_hz, noise_power=noise_power)
     if folded is None:
         folded = half_width_hz >= prf_hz / 2
-    # the coarse comb's spacing, to a third of its bins; or, unfolded, a blend of rotors' up to a bin off
+    # the coarse comb's spacing, to a third of its bins; or, unfolded, a blend of rotors' up to a bin off: searched
+    # there where the third of a bin holds no comb, or one at its edge (the comb lies beyond)
+    first = held = None
     for width in (coarse.resolution_hz / MIN_HARMONICS,) + (() if folded else (coarse.resolution_hz,)):
-        first, held = _search(lines, guess - width, guess + width, half_width_hz=half_width_hz), False
-        if first is None or first.t < COMB_T:  # the comb may hold to fewer orders than the band has (rotors apart)
-            first, held = _held_search(lines, guess - width, guess + width, half_width_hz=half_width_hz), True
-        if first is not None and first.t >= COMB_T:
+        low_hz, high_hz = guess - width, guess + width
+        candidate, candidate_held = _search(lines, low_hz, high_hz, half_width_hz=half_width_hz), False
+        if candidate is None or candidate.t < COMB_T:  # the comb may hold to fewer orders than the band has
+            candidate, candidate_held = _held_search(lines, low_hz, high_hz, half_width_hz=half_width_hz), True
+        if candidate is None or candidate.t < COMB_T:
+            continue
+        if first is None or not _at_edge(candidate.spacing_hz, low_hz, high_hz):
+            first, held = candidate, candidate_held
+        if not _at_edge(candidate.spacing_hz, low_hz, high_hz):
             break
-    if first is None or first.t < COMB_T:
+    if first is None:
         return None
     if not folded and _wingbeat_lines(lines, first.spacing_hz, half_width_hz=half_width_hz,
                                       floor_hz=2 * coarse.resolution_hz):
