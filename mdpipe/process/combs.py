@@ -263,8 +263,9 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
        are a bird's wingbeat (up to 20 Hz) or a swaying branch, not blades (a rotor turns 20 times a
        second and more).
     3. Rotors, on the whole-dwell spectrum: the best comb near the coarse one (within a third of a coarse
-       bin; for an unfolded band, where none stands there, within a bin: the coarse comb of rotors a few per
-       cent apart is their blend, four at 137.5-143.2 Hz read 141.7 Hz in 4 Hz bins), refined, its lines
+       bin; for an unfolded band, where none stands there or the best lies at the window's edge, within a bin:
+       the coarse comb of rotors a few per cent apart is their blend, four at 137.5-143.2 Hz read 141.7 Hz in
+       4 Hz bins), refined, its lines
        removed; then again within ``+-ROTOR_SPREAD`` while a comb reaches ``ROTOR_SHARE`` of the first
        one's contrast with ``t >= COMB_T``. The combs are scored over every order in the band; when the
        first one then falls short of ``COMB_T``, over the extent of orders (``MAX_COARSE_HARMONICS``
