@@ -307,9 +307,10 @@ def find_combs(signal, *, prf_hz, noise_power, half_width_hz, min_hz=MIN_CHOP_HZ
             candidate, candidate_held = _held_search(lines, low_hz, high_hz, half_width_hz=half_width_hz), True
         if candidate is None or candidate.t < COMB_T:
             continue
-        if first is None or not _at_edge(candidate.spacing_hz, low_hz, high_hz):
+        edge = _at_edge(candidate.spacing_hz, low_hz, high_hz)
+        if first is None or not edge:
             first, held = candidate, candidate_held
-        if not _at_edge(candidate.spacing_hz, low_hz, high_hz):
+        if not edge:
             break
     if first is None:
         return None
