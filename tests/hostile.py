@@ -1,7 +1,8 @@
 """Hostile and broken Radarlog files, made with h5py: one builder per class, each ``build(folder) -> path``.
 
 Used by tests/test_hostile_files.py and benchmarks/bench_hostile.py. Every builder writes a capture
-that is valid except for one thing.
+that is valid except for one thing. :func:`overdriven` copies a capture with its ADC overdriven
+(tests/test_saturation.py, benchmarks/bench_saturation.py).
 """
 
 import json
@@ -195,3 +196,22 @@ n4096 = big_layout("n4096", n_samples=4096, n_channels=1, n_chirps=2048, fs_hz=8
 n32768 = big_layout("n32768", n_samples=32768, n_channels=1, n_chirps=128, fs_hz=640e6)
 ch2048 = big_layout("ch2048", n_samples=256, n_channels=2048, n_chirps=64, fs_hz=5e6)
 ch64 = big_layout("ch64", n_samples=2048, n_channels=64, n_chirps=256, fs_hz=40e6)
+
+
+def overdriven(path, out, share):
+    """``path`` copied to ``out`` with its int16 samples scaled (the receiver gain raised) until a share ``share`` of
+    them sits at the full scale, clipped there as an ADC does; FuSca scaled back (the volts unchanged)."""
+    with h5py.File(path, "r") as src:
+        names = [name for name in src if name.startswith("Chn")]
+        magnitude = np.concatenate([np.abs(src[name][...].astype(np.int32)).ravel() for name in names])
+        gain = 32767 / max(float(np.quantile(magnitude, 1.0 - share)), 1.0)
+        with h5py.File(out, "w") as dst:
+            for key, value in src.attrs.items():
+                dst.attrs[key] = value
+            dst.attrs["FuSca"] = src.attrs.get("FuSca", 1.0) / gain
+            for name in src:
+                if name in names:
+                    dst.create_dataset(name, data=np.clip(np.round(src[name][...] * gain), -32768, 32767).astype(np.int16))
+                else:
+                    src.copy(name, dst)
+    return out

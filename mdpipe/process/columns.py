@@ -96,6 +96,8 @@ COLUMNS = (
     Column("wavelength_m", "m", "wavelength at the sweep centre, used for every Doppler-velocity conversion", "never"),
     Column("prf_hz", "Hz", "chirp rate 1/Tp: the slow-time sample rate and the unambiguous Doppler span", "never"),
     Column("dwell_s", "s", "capture duration, chirps x Tp", "never"),
+    Column("clipped_share", "-", "share of the samples read in pass 1 (the chirps probed) at the int16 full scale: "
+           "over 0 a weaker detection may be clipping's image (statuses `clipping_image`)", "float samples (no full scale known)"),
     Column("mdpipe_version", "-", "version of mdpipe that made the row", "never"),
     Column("notes", "-", "`; `-separated: the class's reason, why each withheld feature is withheld, warnings about "
            "the capture (clipping)", "never"),

@@ -8,7 +8,7 @@ import numpy as np
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
-from mdpipe.process import flashes, memory, ranging, selection
+from mdpipe.process import flashes, memory, ranging, saturation, selection
 from mdpipe.process.classify import classify
 from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analyse_target
 
@@ -95,7 +95,12 @@ def flash_views(reader, track_bins, weight, process):
                                                        chunk_chirps=process.chunk_chirps))
 
 
-def _base_row(path, stats, process, params):
+def clipped_share(reader, stats):
+    """The share of the samples read in pass 1 at the int16 full scale; None for float samples (no full scale)."""
+    return stats.clipped_fraction if reader.layout.sample_dtype == "int16" else None
+
+
+def _base_row(path, stats, process, params, clipped):
     return {
         "file": str(path), "target": None, "class": "none", "range_m": None, "range_bin": None,
         "range_min_m": None, "range_max_m": None, "rx_gain_db": None, **dict.fromkeys(FEATURE_KEYS),
@@ -103,7 +108,7 @@ def _base_row(path, stats, process, params):
         "elevation_deg": process.elevation_deg, "n_blades": process.n_blades,
         "n_blades_source": None if process.n_blades is None else "given", "threshold_db": process.threshold_db,
         "wavelength_m": params.wavelength_m, "prf_hz": params.prf_hz, "dwell_s": params.duration_s(stats.n_chirps),
-        "mdpipe_version": __version__,
+        "clipped_share": clipped, "mdpipe_version": __version__,
     }
 
 
@@ -149,12 +154,13 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             detections = selection.detect(stats, test, max_targets=process.max_targets, zero_pad=process.zero_pad)
         noise = selection.noise_power(stats) / params.n_channels
         capture_notes = list(reader.warnings)
-        if stats.clipped_fraction > 0:
-            capture_notes.append(f"{stats.clipped_fraction:.2%} of the samples sit at the int16 full scale (clipped): "
+        clipped = clipped_share(reader, stats)
+        if clipped:
+            capture_notes.append(f"{clipped:.2%} of the samples sit at the int16 full scale (clipped): "
                                  "amplitudes and spectra are distorted")
         rows, analyses = [], []
         if not detections:
-            row = _base_row(path, stats, process, params)
+            row = _base_row(path, stats, process, params, clipped)
             row["notes"] = "; ".join([no_detection_note(test, process)] + capture_notes)
             return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row],
                                  noise_power=noise, process=process, detection_test=test)
@@ -170,7 +176,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
                                       flash_views=flash_views(reader, track_bins, weight, process),
                                       ramp_share=params.sampled_duration_s / params.chirp_period_s)
             range_min_m, range_max_m = float(track.range_m.min()), float(track.range_m.max())
-            row = _base_row(path, stats, process, params)
+            row = _base_row(path, stats, process, params, clipped)
             row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),
                        range_min_m=range_min_m, range_max_m=range_max_m, rx_gain_db=rx_gain_db)
             row.update(analysis.row)
@@ -179,5 +185,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + capture_notes)
             rows.append(row)
             analyses.append(analysis)
+        levels_db = [detection.snr_db if row["snr_db"] is None else row["snr_db"] for detection, row in zip(detections, rows)]
+        rows = saturation.saturated_rows(rows, levels_db, clipped, capture_notes)
     return CaptureResult(str(path), params, layout, stats, detections, analyses, rows, noise_power=noise,
                          process=process, detection_test=test)

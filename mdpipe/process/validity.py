@@ -43,6 +43,8 @@ STATUS_CODES = {
     "no_wingbeat": "no repeating wingbeat pattern in the dwell",
     "no_glide": "no flapping bursts with glides between them (wings that beat throughout, or no wings)",
     "not_applicable": "not a quantity of this target (e.g. the wingbeat of an echo with blade flashes)",
+    "clipping_image": ("the capture clips and this echo is weak enough to be a harmonic or intermodulation image of its "
+                       "strongest target (read as `none`)"),
 }
 
 
