@@ -318,3 +318,33 @@ def test_hann_leakage_bounds_a_tone_and_is_reached_half_a_bin_off(offset_bins):
         near = far & (distance <= 5.5)  # (further out, the 64 points' own periodicity adds to the transform)
         assert power[near] / wingbeat.hann_leakage(distance[near]) == pytest.approx(1.0, abs=1e-3)
         assert 10 * np.log10(wingbeat.hann_leakage(np.array([1.5, 2.5]))) == pytest.approx([-15.4, -32.3], abs=0.05)
+
+
+# A goose of the held-out bird sweep (configs/sweeps/heldout_birds.yaml, scene 37) seen by a 94 GHz radar at a
+# counter-drone PRF (10.3 kHz) for 0.79 s: 1.9 beats of its 2.43 Hz wingbeat.
+GOOSE_TWO_BEATS = {
+    "name": "goose_two_beats", "seed": 826304766,
+    "radar": {"f_start_hz": 94.0e9, "f_stop_hz": 94.1e9, "ramp_up_s": 7.74676e-05, "chirp_period_s": 9.68345e-05,
+              "sample_rate_hz": 1652303.6744135616, "n_samples": 128, "n_chirps": 8152, "n_channels": 1},
+    "noise": {"moving_snr_db": 3.55874},
+    "targets": [
+        {"name": "goose", "type": "bird", "a1_deg": 45.3876, "a2_deg": 40.2296, "wingbeat_drift_fraction": 0.027801,
+         "wing_roughness": 0.0749608, "wingbeat_hz": 2.42854, "upper_arm_m": 0.394282, "forearm_m": 0.302396,
+         "body_rcs_m2": 0.0245149, "wing_rcs_m2": 0.0270047,
+         "motion": {"position_m": [44.935, -5.14584, 14.0126], "velocity_mps": [-5.04126, -4.37473, 0.0]}},
+        {"type": "static", "name": "clutter0", "range_m": 54.5292, "azimuth_deg": 37.026, "rcs_m2": 8.28907}],
+}
+
+
+def test_a_wing_pattern_repeating_at_half_the_beat_is_not_taken_for_the_wingbeat(tmp_capture):
+    """All its wing rows repeat every 0.2 s (the two strokes alike), those of one stroke side every 0.4 s only: the
+    wingbeat is given at 2.43 Hz, not confidently (it read 5.08 Hz, `ok`, before the sides were read)."""
+    from mdpipe.params import ProcessParams
+    from mdpipe.process.pipeline import process_capture
+
+    path, _ = tmp_capture(GOOSE_TWO_BEATS)
+    row = process_capture(path, ProcessParams()).rows[0]
+    assert row["class"] == "bird"
+    assert row["wingbeat_freq_hz_status"] == "ambiguous_period"
+    assert row["wingbeat_freq_hz"] == pytest.approx(2.42854, rel=0.05)
+    assert "those of one stroke side" in row["notes"]

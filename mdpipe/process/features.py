@@ -1154,6 +1154,11 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     """Wingbeat frequency (Hz) of a bird's body-demodulated echo, from two wingbeats in the dwell on; given as
     ``ambiguous_period`` where two looks read it an octave apart (:class:`~mdpipe.process.wingbeat.Octave`)."""
     beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz)
+    if isinstance(beat, Octave) and beat.by_sides:
+        return Measured(1.0 / beat.period_s, "ambiguous_period",
+                        f"wingbeat {1.0 / beat.period_s:.3g} Hz or twice it: the wing rows repeat every "
+                        f"{beat.short_s:.3g} s, those of one stroke side every {beat.period_s:.3g} s only (the two "
+                        "strokes alike: a dwell of more beats would tell)")
     if isinstance(beat, Octave):
         return Measured(1.0 / beat.period_s, "ambiguous_period",
                         f"wingbeat {1.0 / beat.period_s:.3g} Hz or twice it: read in frames of two lengths, the wing "
