@@ -60,7 +60,8 @@ def compare(base, rows, bin_m):
     """Counts of one clipped reading against the unclipped one (``base``): see the module's list."""
     top = max((row["snr_db"] for row in targets(rows) if row["snr_db"] is not None), default=None)
     counts = {"highest_image_db": None}
-    counts |= dict.fromkeys(("images", "image_classes", "image_classes_left", "marked", "class_changed", "moved_ok", "values"), 0)
+    counts |= dict.fromkeys(("images", "image_classes", "image_classes_left", "marked", "class_changed", "moved_ok",
+                             "values"), 0)
     for row in targets(rows):
         match = [b for b in targets(base) if abs(b["range_m"] - row["range_m"]) <= 2 * bin_m]
         if not match:

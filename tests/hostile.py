@@ -211,7 +211,8 @@ def overdriven(path, out, share):
             dst.attrs["FuSca"] = src.attrs.get("FuSca", 1.0) / gain
             for name in src:
                 if name in names:
-                    dst.create_dataset(name, data=np.clip(np.round(src[name][...] * gain), -32768, 32767).astype(np.int16))
+                    scaled = np.clip(np.round(src[name][...] * gain), -32768, 32767)
+                    dst.create_dataset(name, data=scaled.astype(np.int16))
                 else:
                     src.copy(name, dst)
     return out

@@ -97,7 +97,8 @@ COLUMNS = (
     Column("prf_hz", "Hz", "chirp rate 1/Tp: the slow-time sample rate and the unambiguous Doppler span", "never"),
     Column("dwell_s", "s", "capture duration, chirps x Tp", "never"),
     Column("clipped_share", "-", "share of the samples read in pass 1 (the chirps probed) at the int16 full scale: "
-           "over 0 a weaker detection may be clipping's image (statuses `clipping_image`)", "float samples (no full scale known)"),
+           "over 0 a weaker detection may be clipping's image (statuses `clipping_image`)",
+           "float samples (no full scale known)"),
     Column("mdpipe_version", "-", "version of mdpipe that made the row", "never"),
     Column("notes", "-", "`; `-separated: the class's reason, why each withheld feature is withheld, warnings about "
            "the capture (clipping)", "never"),

@@ -1152,7 +1152,8 @@ def _edges_resolved(micro, edges, *, prf_hz, noise_power, hop_fraction, longest_
 
 def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     """Wingbeat frequency (Hz) of a bird's body-demodulated echo, from two wingbeats in the dwell on; given as
-    ``ambiguous_period`` where two looks read it an octave apart (:class:`~mdpipe.process.wingbeat.Octave`)."""
+    ``ambiguous_period`` where two looks read it an octave apart, or a stroke side's rows repeat at twice the period
+    read (:class:`~mdpipe.process.wingbeat.Octave`)."""
     beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz)
     if isinstance(beat, Octave) and beat.by_sides:
         return Measured(1.0 / beat.period_s, "ambiguous_period",

@@ -185,7 +185,8 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + capture_notes)
             rows.append(row)
             analyses.append(analysis)
-        levels_db = [detection.snr_db if row["snr_db"] is None else row["snr_db"] for detection, row in zip(detections, rows)]
+        levels_db = [detection.snr_db if row["snr_db"] is None else row["snr_db"]
+                     for detection, row in zip(detections, rows)]
         rows = saturation.saturated_rows(rows, levels_db, clipped, capture_notes)
     return CaptureResult(str(path), params, layout, stats, detections, analyses, rows, noise_power=noise,
                          process=process, detection_test=test)

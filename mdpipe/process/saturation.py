@@ -33,8 +33,8 @@ def image_ceiling_db(clipped_share):
 
 
 def _image_row(row, strongest, *, level_db, clipped_share, capture_notes):
-    """``row`` as a possible image of the detection ``strongest`` (a row): class ``none``, every feature withheld but its
-    SNR, its notes the why and ``capture_notes``."""
+    """``row`` as a possible image of the detection ``strongest`` (a row): class ``none``, every feature withheld but
+    its SNR, its notes the why and ``capture_notes``."""
     ceiling_db = image_ceiling_db(clipped_share)
     note = (f"class: possibly an image of the target at {strongest['range_m']:.4g} m made by clipping: "
             f"{clipped_share:.2%} of the samples sit at the int16 full scale, and this echo stands {-level_db:.1f} dB "
@@ -50,9 +50,9 @@ def _image_row(row, strongest, *, level_db, clipped_share, capture_notes):
 
 
 def saturated_rows(rows, snr_db, clipped_share, capture_notes=()):
-    """The target rows of one capture (``snr_db``: each target's SNR along its track, dB) read for its clipped share of samples
-    (None: float samples, no full scale known); ``capture_notes``: the capture's warnings, kept in an image's notes.
-    Returns new rows; without clipping, ``rows`` as they are."""
+    """The target rows of one capture (``snr_db``: each target's SNR along its track, dB) read for its share of clipped
+    samples (None: float samples, no full scale known); ``capture_notes``: the capture's warnings, kept in an image's
+    notes. Returns new rows; without clipping, ``rows`` as they are."""
     if not clipped_share or not rows:
         return rows
     strongest = int(np.argmax(snr_db))

@@ -128,6 +128,12 @@ def pattern_autocorrelation(spec, *, detrend_frames, noise_level, row_percentile
     power = _lit_rows(spec, noise_level, row_percentile, lit_db=lit_db)
     if len(power) == 0:
         return np.zeros(spec.power.shape[1])
+    return _rows_autocorrelation(power, detrend_frames=detrend_frames)
+
+
+def _rows_autocorrelation(power, *, detrend_frames):
+    """Time autocorrelation of the log of Doppler rows ``power`` (rows, frames), each less its moving average over
+    ``detrend_frames``, summed over the rows, unbiased, normalised at lag 0 (left as it is where that is 0)."""
     rows = np.log(power + np.finfo(float).tiny)
     rows = rows - moving_average(rows, max(1, detrend_frames), axis=1)
     n = rows.shape[1]
@@ -264,18 +270,16 @@ class Octave:
 
 
 def _side_autocorrelation(frames, sign, row_percentile=SIGNAL_ROW_PERCENTILES[0]):
-    """:func:`pattern_autocorrelation` of the wing rows of ``frames`` on one side of the body line (``sign`` of their
+    """The pattern autocorrelation (:func:`pattern_autocorrelation`, detrended over the slowest wingbeat's two periods
+    as :func:`_row_set_period` reads it) of the wing rows of ``frames`` on one side of the body line (``sign`` of their
     Doppler), lit in ``100 - row_percentile`` % of the frames; None where fewer than ``MIN_WING_ROWS`` are."""
     spec = frames.spec
     mask = _lit_mask(spec, frames.noise_level, row_percentile, off_hz=frames.off_hz, lit_db=frames.lit_db)
     mask &= np.sign(spec.f_hz) == sign
     if np.count_nonzero(mask) < MIN_WING_ROWS:
         return None
-    rows = np.log(spec.power[mask] + np.finfo(float).tiny)
-    rows = rows - moving_average(rows, max(1, int(2 * frames.frame_rate / MIN_WINGBEAT_HZ)), axis=1)
-    n = rows.shape[1]
-    r = _lag_products(rows).sum(axis=0) / np.arange(n, 0, -1)
-    return r / r[0] if r[0] > 0 else None
+    r = _rows_autocorrelation(spec.power[mask], detrend_frames=int(2 * frames.frame_rate / MIN_WINGBEAT_HZ))
+    return r if r[0] > 0 else None
 
 
 def _signed_double(found, frames):
