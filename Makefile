@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-saturation batch paper evaluate evaluate-heldout evaluate-heldout-birds offmodel readme clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-heldout evaluate-heldout-birds offmodel readme clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -63,10 +63,10 @@ BATCH_BASELINE ?= 4eec045^
 bench-batch: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_batch.py --repeats 5 --baseline-commit '$(BATCH_BASELINE)'
 
-# ADC saturation: the bundled samples and 24 default-sweep scenes with their IF scaled until 0.1-30 % of the samples
-# clip, read against their unclipped reading: images, classes, values moved (~3 min).
-bench-saturation: $(MDPIPE)
-	$(BIN)/python benchmarks/bench_saturation.py
+# Receiver impairments: the bundled samples and 24 default-sweep scenes overdriven until 0.1-50 % of the samples clip,
+# crossed by another radar's chirps, or with a drifting TX-RX leakage, read against their clean reading (~2 min).
+bench-impairments: $(MDPIPE)
+	$(BIN)/python benchmarks/bench_impairments.py
 
 # The paper's Tables IV and V from simulations of every Table I and II configuration (~30 s).
 paper: $(MDPIPE)

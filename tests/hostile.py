@@ -1,8 +1,8 @@
 """Hostile and broken Radarlog files, made with h5py: one builder per class, each ``build(folder) -> path``.
 
 Used by tests/test_hostile_files.py and benchmarks/bench_hostile.py. Every builder writes a capture
-that is valid except for one thing. :func:`overdriven` copies a capture with its ADC overdriven
-(tests/test_saturation.py, benchmarks/bench_saturation.py).
+that is valid except for one thing. :func:`overdriven`, :func:`interfered` and :func:`leaking` copy a capture with
+a receiver impairment of real recordings (tests/test_saturation.py, benchmarks/bench_impairments.py).
 """
 
 import json
@@ -198,21 +198,61 @@ ch2048 = big_layout("ch2048", n_samples=256, n_channels=2048, n_chirps=64, fs_hz
 ch64 = big_layout("ch64", n_samples=2048, n_channels=64, n_chirps=256, fs_hz=40e6)
 
 
+def _rewritten(path, out, change, *, gain=1.0):
+    """``path`` copied to ``out`` with every sample dataset's counts passed through ``change(counts, attrs)`` (float
+    counts, a dataset's (chirps, samples)) and clipped to int16 as an ADC does; FuSca divided by ``gain``."""
+    with h5py.File(path, "r") as src, h5py.File(out, "w") as dst:
+        for key, value in src.attrs.items():
+            dst.attrs[key] = value
+        dst.attrs["FuSca"] = src.attrs.get("FuSca", 1.0) / gain
+        for name in src:
+            if name.startswith("Chn"):
+                counts = np.clip(np.round(change(src[name][...].astype(np.float64), src.attrs)), -32768, 32767)
+                dst.create_dataset(name, data=counts.astype(np.int16))
+            else:
+                src.copy(name, dst)
+    return out
+
+
 def overdriven(path, out, share):
     """``path`` copied to ``out`` with its int16 samples scaled (the receiver gain raised) until a share ``share`` of
     them sits at the full scale, clipped there as an ADC does; FuSca scaled back (the volts unchanged)."""
     with h5py.File(path, "r") as src:
-        names = [name for name in src if name.startswith("Chn")]
-        magnitude = np.concatenate([np.abs(src[name][...].astype(np.int32)).ravel() for name in names])
-        gain = 32767 / max(float(np.quantile(magnitude, 1.0 - share)), 1.0)
-        with h5py.File(out, "w") as dst:
-            for key, value in src.attrs.items():
-                dst.attrs[key] = value
-            dst.attrs["FuSca"] = src.attrs.get("FuSca", 1.0) / gain
-            for name in src:
-                if name in names:
-                    scaled = np.clip(np.round(src[name][...] * gain), -32768, 32767)
-                    dst.create_dataset(name, data=scaled.astype(np.int16))
-                else:
-                    src.copy(name, dst)
-    return out
+        magnitude = np.concatenate([np.abs(src[name][...].astype(np.int32)).ravel() for name in src
+                                    if name.startswith("Chn")])
+    gain = 32767 / max(float(np.quantile(magnitude, 1.0 - share)), 1.0)
+    return _rewritten(path, out, lambda counts, attrs: counts * gain, gain=gain)
+
+
+def interfered(path, out, period_chirps, *, burst_samples=6, amplitude=13000.0, seed=0):
+    """``path`` with another FMCW radar's chirps crossing ours (the receiver gain 6 dB lower to make room): in one
+    chirp every ``period_chirps`` (no whole number: the two radars repeat at rates apart), a burst of
+    ``burst_samples`` samples sweeping through the IF band, Hann-tapered, ``amplitude`` counts, at a place in the chirp
+    that walks with the crossing."""
+    rng = np.random.default_rng(seed)
+
+    def change(counts, attrs):
+        counts = 0.5 * counts
+        n_chirps, n_samples = counts.shape
+        chirps = np.flatnonzero(np.diff(np.floor(np.arange(n_chirps + 1) / period_chirps)) > 0)
+        k = np.arange(burst_samples)
+        taper = np.hanning(burst_samples + 2)[1:-1]
+        for chirp in chirps:
+            first = int((chirp / period_chirps) % 1 * (n_samples - burst_samples))
+            counts[chirp, first:first + burst_samples] += amplitude * taper * np.cos(
+                np.pi * k ** 2 / burst_samples + rng.uniform(0, 2 * np.pi))
+        return counts
+    return _rewritten(path, out, change, gain=0.5)
+
+
+def leaking(path, out, *, beat_share=0.02, amplitude=13000.0, drift=0.01, dc=300.0):
+    """``path`` with TX-RX leakage (the receiver gain 6 dB lower to make room): a beat at ``beat_share`` of the sample
+    rate (a range of some tens of cm), ``amplitude`` counts, its amplitude drifting by ``drift`` at 0.7 Hz and its
+    phase by 0.05 rad at 0.4 Hz (the radar warming), and a DC offset of ``dc`` counts."""
+    def change(counts, attrs):
+        n_chirps, n_samples = counts.shape
+        t_s = np.arange(n_chirps)[:, None] * float(attrs["Tp"])
+        sample_s = np.arange(n_samples)[None, :] / float(attrs["fs"])
+        beat = np.cos(2 * np.pi * beat_share * float(attrs["fs"]) * sample_s + 0.05 * np.sin(2 * np.pi * 0.4 * t_s))
+        return 0.5 * counts + amplitude * (1 + drift * np.sin(2 * np.pi * 0.7 * t_s)) * beat + dc
+    return _rewritten(path, out, change, gain=0.5)

@@ -5,7 +5,7 @@ copy of the echo at three times its range, folded at the maximum range) and, mix
 scene (static clutter too), intermodulation products (``2 f_a - f_b``, ...): copies of a target's echo at other ranges,
 its slow-time phase multiplied by a whole number (its Doppler mirrored or scaled), its periodicities (blade flashes,
 wingbeat) intact. Each is detected as one more target and read as one more drone or bird. Measured
-(``benchmarks/bench_saturation.py``: the bundled samples and 24 default-sweep scenes, their IF scaled until a share
+(``benchmarks/bench_impairments.py``: the bundled samples and 24 default-sweep scenes, their IF scaled until a share
 ``s`` of the samples clip): images from ``s`` = 0.1 % on (3 at 0.1 %, 34 at 3 %, 57 at 50 %, of 28 captures), a third
 to two thirds of them read drone or bird, the highest 53.7, 31.9, 21.0, 13.6 and 3.5 dB under its target at 0.1, 1,
 3, 10 and 30 %: under ``20 log10(s) + 9.5`` dB. The targets' own values stayed within 3 % of their unclipped reading

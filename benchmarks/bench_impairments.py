@@ -1,5 +1,6 @@
-"""ADC saturation: what samples clipped at the int16 full scale do to mdpipe's rows, and what it says of them.
+"""Receiver impairments of real recordings: what they do to mdpipe's rows, and what it says of them.
 
+ADC saturation first: samples clipped at the int16 full scale.
 Captures: the bundled samples and the first scenes of the default sweep (``configs/sweeps/default.yaml``), simulated
 here. Each is processed as it is, then with its IF samples scaled (the receiver gain raised) until a share ``s`` of
 them sits at the int16 full scale (clipped). Per share, against the unclipped reading of the same capture:
@@ -11,8 +12,12 @@ them sits at the int16 full scale (clipped). Per share, against the unclipped re
 * values of the targets (chopping, rotation rate, blade length, wingbeat, body velocity) more than 3 % (and 0.05 m/s)
   from the unclipped reading and still given ``ok`` (confidently moved).
 
-Usage: ``python benchmarks/bench_saturation.py [--scenes 24] [--shares 0.001,0.01,0.03,0.1,0.3]``
-(``make bench-saturation``).
+Then, the same captures with the receiver gain 6 dB lower and another radar's chirps crossing ours (a burst every 37.3
+or 9.71 chirps), or a TX-RX leakage beat whose amplitude and phase drift, with a DC offset (``tests/hostile.py``):
+new detections, the ones read drone or bird, targets whose class changed, values moved.
+
+Usage: ``python benchmarks/bench_impairments.py [--scenes 24] [--shares 0.001,0.01,0.03,0.1,0.3,0.5]``
+(``make bench-impairments``).
 """
 
 import argparse
@@ -56,8 +61,25 @@ def targets(rows):
     return [row for row in rows if row["range_m"] is not None]
 
 
+IMPAIRMENTS = {
+    "another radar's chirps, a burst every 37.3 chirps": lambda path, out: hostile.interfered(path, out, 37.3),
+    "another radar's chirps, a burst every 9.71 chirps": lambda path, out: hostile.interfered(path, out, 9.71),
+    "TX-RX leakage drifting 1 % and 0.05 rad, DC offset": lambda path, out: hostile.leaking(path, out),
+}
+
+
+def add(totals, counts):
+    """``counts`` (:func:`compare`) summed into ``totals``; the highest image level kept."""
+    for key, value in counts.items():
+        if key == "highest_image_db":
+            found = [v for v in (value, totals.get(key)) if v is not None]
+            totals[key] = max(found) if found else None
+        else:
+            totals[key] = totals.get(key, 0) + value
+
+
 def compare(base, rows, bin_m):
-    """Counts of one clipped reading against the unclipped one (``base``): see the module's list."""
+    """Counts of one impaired reading against the clean one (``base``): see the module's list."""
     top = max((row["snr_db"] for row in targets(rows) if row["snr_db"] is not None), default=None)
     counts = {"highest_image_db": None}
     counts |= dict.fromkeys(("images", "image_classes", "image_classes_left", "marked", "class_changed", "moved_ok",
@@ -95,6 +117,7 @@ def main(argv=None):
     shares = [float(s) for s in args.shares.split(",")]
     start = time.perf_counter()
     totals = {share: {} for share in shares}
+    others = {name: {} for name in IMPAIRMENTS}
     with tempfile.TemporaryDirectory() as tmp, threadpool_limits(limits=1):
         work = Path(tmp)
         items = captures(work, args.scenes)
@@ -102,17 +125,14 @@ def main(argv=None):
         for name, path, params in items:
             base = process_capture(path, params)
             n_targets += len(targets(base.rows))
+            out = work / f"impaired_{name}"
             for share in shares:
-                out = work / f"clipped_{name}"
                 hostile.overdriven(path, out, share)
-                rows = process_capture(out, params).rows
-                out.unlink()
-                for key, value in compare(base.rows, rows, base.params.range_bin_m).items():
-                    if key == "highest_image_db":
-                        found = [v for v in (value, totals[share].get(key)) if v is not None]
-                        totals[share][key] = max(found) if found else None
-                    else:
-                        totals[share][key] = totals[share].get(key, 0) + value
+                add(totals[share], compare(base.rows, process_capture(out, params).rows, base.params.range_bin_m))
+            for impairment, make in IMPAIRMENTS.items():
+                make(path, out)
+                add(others[impairment], compare(base.rows, process_capture(out, params).rows, base.params.range_bin_m))
+            out.unlink()
     print(f"{len(items)} captures ({len(SAMPLES)} bundled samples, {args.scenes} default-sweep scenes), {n_targets} "
           f"targets unclipped; {time.perf_counter() - start:.0f} s\n")
     print("| share clipped | images | highest image, dB under its target (ceiling) | their echo reads drone/bird | "
@@ -124,6 +144,12 @@ def main(argv=None):
         highest = "-" if t["highest_image_db"] is None else f"{t['highest_image_db']:.1f}"
         print(f"| {share:g} | {t['images']} | {highest} ({image_ceiling_db(share):.1f}) | {t['image_classes']} | "
               f"{t['marked']} | {t['image_classes_left']} | {t['class_changed']} | {t['moved_ok']} | {t['values']} |")
+    print("\n| impairment | new detections | read drone/bird | targets whose class changed | values moved >3 % given "
+          "`ok` | values compared |")
+    print("|---|---|---|---|---|---|")
+    for impairment, t in others.items():
+        print(f"| {impairment} | {t['images']} | {t['image_classes_left']} | {t['class_changed']} | {t['moved_ok']} | "
+              f"{t['values']} |")
     return 0
 
 
