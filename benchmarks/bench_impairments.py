@@ -1,7 +1,6 @@
 """Receiver impairments of real recordings: what they do to mdpipe's rows, and what it says of them.
 
-ADC saturation first: samples clipped at the int16 full scale.
-Captures: the bundled samples and the first scenes of the default sweep (``configs/sweeps/default.yaml``), simulated
+ADC saturation first (samples clipped at the int16 full scale). Captures: the bundled samples and the first scenes of the default sweep (``configs/sweeps/default.yaml``), simulated
 here. Each is processed as it is, then with its IF samples scaled (the receiver gain raised) until a share ``s`` of
 them sits at the int16 full scale (clipped). Per share, against the unclipped reading of the same capture:
 
@@ -92,7 +91,8 @@ def compare(base, rows, bin_m):
             counts["images"] += 1
             if row["snr_db"] is not None:
                 level = row["snr_db"] - top
-                counts["highest_image_db"] = max(level, counts["highest_image_db"] or level)
+                highest = counts["highest_image_db"]
+                counts["highest_image_db"] = level if highest is None else max(level, highest)
             counts["marked"] += marked
             counts["image_classes"] += read != "none"
             counts["image_classes_left"] += row["class"] != "none"
