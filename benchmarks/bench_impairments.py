@@ -1,8 +1,9 @@
 """Receiver impairments of real recordings: what they do to mdpipe's rows, and what it says of them.
 
-ADC saturation first (samples clipped at the int16 full scale). Captures: the bundled samples and the first scenes of the default sweep (``configs/sweeps/default.yaml``), simulated
-here. Each is processed as it is, then with its IF samples scaled (the receiver gain raised) until a share ``s`` of
-them sits at the int16 full scale (clipped). Per share, against the unclipped reading of the same capture:
+ADC saturation first (samples clipped at the int16 full scale). Captures: the bundled samples and the first scenes of
+the default sweep (``configs/sweeps/default.yaml``), simulated here. Each is processed as it is, then with its IF
+samples scaled (the receiver gain raised) until a share ``s`` of them sits at the int16 full scale (clipped). Per
+share, against the unclipped reading of the same capture:
 
 * images: detections the unclipped capture does not hold (harmonics and intermodulation products of the IF); of
   those, the ones whose echo reads ``drone`` or ``bird`` (its class, or for one marked ``clipping_image``, the class
