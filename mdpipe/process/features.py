@@ -1155,16 +1155,13 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     ``ambiguous_period`` where two looks read it an octave apart, or a stroke side's rows repeat at twice the period
     read (:class:`~mdpipe.process.wingbeat.Octave`)."""
     beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz)
-    if isinstance(beat, Octave) and beat.by_sides:
-        return Measured(1.0 / beat.period_s, "ambiguous_period",
-                        f"wingbeat {1.0 / beat.period_s:.3g} Hz or twice it: the wing rows repeat every "
-                        f"{beat.short_s:.3g} s, those of one stroke side every {beat.period_s:.3g} s only (the two "
-                        "strokes alike: a dwell of more beats would tell)")
     if isinstance(beat, Octave):
+        why = (f"the wing rows repeat every {beat.short_s:.3g} s, those of one stroke side every {beat.period_s:.3g} s "
+               "only (the two strokes alike: a dwell of more beats would tell)" if beat.by_sides else
+               f"read in frames of two lengths, the wing pattern repeats every {beat.short_s:.3g} s and every "
+               f"{beat.period_s:.3g} s (the rows' stroke sign, blind near the body line, would tell)")
         return Measured(1.0 / beat.period_s, "ambiguous_period",
-                        f"wingbeat {1.0 / beat.period_s:.3g} Hz or twice it: read in frames of two lengths, the wing "
-                        f"pattern repeats every {beat.short_s:.3g} s and every {beat.period_s:.3g} s (the rows' "
-                        "stroke sign, blind near the body line, would tell)")
+                        f"wingbeat {1.0 / beat.period_s:.3g} Hz or twice it: {why}")
     if beat is not None:
         return Measured(1.0 / beat.period_s)
     note = (f"no wingbeat between {max(MIN_WINGBEAT_HZ, 2.0 / dwell_s):.2g} and {MAX_WINGBEAT_HZ:g} Hz "

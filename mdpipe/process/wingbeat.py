@@ -29,13 +29,12 @@ beating 14.6 Hz in 63 ms frames read 7.6 % off, and at 14 Hz at X band as 7 Hz).
 period, the wingbeat is one of the two (:class:`Octave`).
 """
 
-import itertools
 from dataclasses import dataclass, replace
 
 import numpy as np
 from mdpipe.process.doppler import Spectrogram, noise_level_per_bin, spectrogram
 from mdpipe.process.filters import moving_average
-from mdpipe.process.periodicity import bartlett_error, period_from_autocorrelation, refine_period
+from mdpipe.process.periodicity import Period, bartlett_error, period_from_autocorrelation, refine_period
 
 FRAME_S = 0.064
 HOP_S = 0.016
@@ -235,22 +234,29 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
     frames = wing_frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
     if frames.wing_rows() < MIN_WING_ROWS:
         return None
+    found = _two_looks(demodulated, frames, prf_hz=prf_hz, noise_power=noise_power)
+    return _signed_double(found, frames) if isinstance(found, Period) else found
+
+
+def _two_looks(demodulated, frames, *, prf_hz, noise_power):
+    """The period :func:`_looks` reads in ``frames``, read again in shorter frames where it spans under
+    ``BLURRED_FRAMES`` of them (see :func:`wingbeat`): a Period, an :class:`Octave`, or None."""
     found = _looks(frames)
     window_s = frames.spec.window_s
     if found is None or found.period_s >= BLURRED_FRAMES * window_s:
-        return _signed_double(found, frames)
+        return found
     shorter = wing_frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
                           frame_s=max(MIN_FRAME_S, found.period_s / BLURRED_FRAMES), weak=frames.weak)
     if shorter.spec.window_s >= window_s:  # no shorter frame (8 chirps at least)
-        return _signed_double(found, frames)
+        return found
     again = _looks(shorter)
     if again is None:  # nothing more seen
-        return _signed_double(found, frames)
+        return found
     ratio = again.period_s / found.period_s
     if abs(2 * ratio - 1) <= BLUR_AGREEMENT:  # the first look took the wingbeat's double
-        return _signed_double(again, frames)
+        return again
     if abs(ratio - 1) <= BLUR_AGREEMENT:  # confirmed: under two frames the shorter frames read it sharper
-        return _signed_double(again if found.period_s < 2 * window_s else found, frames)
+        return again if found.period_s < 2 * window_s else found
     if abs(ratio / 2 - 1) <= BLUR_AGREEMENT:  # the shorter frames read twice the period: one of the two
         return Octave(period_s=again.period_s, short_s=found.period_s)
     return None
@@ -270,21 +276,26 @@ class Octave:
     by_sides: bool = False
 
 
-def _side_autocorrelation(frames, sign, row_percentile=SIGNAL_ROW_PERCENTILES[0]):
-    """The pattern autocorrelation (:func:`pattern_autocorrelation`, detrended over the slowest wingbeat's two periods
-    as :func:`_row_set_period` reads it) of the wing rows of ``frames`` on one side of the body line (``sign`` of their
-    Doppler), lit in ``100 - row_percentile`` % of the frames; None where fewer than ``MIN_WING_ROWS`` are."""
+def _side_autocorrelations(frames, row_percentile=SIGNAL_ROW_PERCENTILES[0]):
+    """The pattern autocorrelations (:func:`pattern_autocorrelation`, detrended over the slowest wingbeat's two periods
+    as :func:`_row_set_period` reads it) of the wing rows of ``frames`` lit in ``100 - row_percentile`` % of the
+    frames, one for each side of the body line (above it, then below); None for a side where fewer than
+    ``MIN_WING_ROWS`` are."""
     spec = frames.spec
-    mask = _lit_mask(spec, frames.noise_level, row_percentile, off_hz=frames.off_hz, lit_db=frames.lit_db)
-    mask &= np.sign(spec.f_hz) == sign
-    if np.count_nonzero(mask) < MIN_WING_ROWS:
-        return None
-    r = _rows_autocorrelation(spec.power[mask], detrend_frames=int(2 * frames.frame_rate / MIN_WINGBEAT_HZ))
-    return r if r[0] > 0 else None
+    lit = _lit_mask(spec, frames.noise_level, row_percentile, off_hz=frames.off_hz, lit_db=frames.lit_db)
+    sides = []
+    for sign in (1, -1):
+        mask = lit & (np.sign(spec.f_hz) == sign)
+        if np.count_nonzero(mask) < MIN_WING_ROWS:
+            sides.append(None)
+            continue
+        r = _rows_autocorrelation(spec.power[mask], detrend_frames=int(2 * frames.frame_rate / MIN_WINGBEAT_HZ))
+        sides.append(r if r[0] > 0 else None)
+    return sides
 
 
 def _signed_double(found, frames):
-    """``found`` (a Period, or None), or an :class:`Octave` at twice its period where a stroke side's wing rows (lit in
+    """``found`` (a Period), or an :class:`Octave` at twice its period where a stroke side's wing rows (lit in
     half the frames, or in a quarter: ``SIGNAL_ROW_PERCENTILES``) repeat at T under ``SIDE_REPEAT`` and at 2T by
     ``SIDE_DOUBLE_SHARE`` more (the lag 2T within the record's ``REPEAT_SHARE``).
 
@@ -296,16 +307,14 @@ def _signed_double(found, frames):
     quarter), a side repeats at 2T up to 0.25 more than at T, but then at T with 0.5 or more; the 25 sides under 0.5
     at T repeat less at 2T.
     """
-    if found is None:
-        return found
     lag = found.period_s * frames.frame_rate
-    for row_percentile, sign in itertools.product(SIGNAL_ROW_PERCENTILES, (1, -1)):
-        r = _side_autocorrelation(frames, sign, row_percentile)
-        if r is None or 2 * lag + 2 >= REPEAT_SHARE * len(r):
-            continue
-        at = lambda x: float(r[max(int(round(x)) - 1, 1):int(round(x)) + 2].max())  # noqa: E731
-        if at(lag) < SIDE_REPEAT and at(2 * lag) - at(lag) >= SIDE_DOUBLE_SHARE:
-            return Octave(period_s=2 * found.period_s, short_s=found.period_s, by_sides=True)
+    for row_percentile in SIGNAL_ROW_PERCENTILES:
+        for r in _side_autocorrelations(frames, row_percentile):
+            if r is None or 2 * lag + 2 >= REPEAT_SHARE * len(r):
+                continue
+            at = lambda x: float(r[max(int(round(x)) - 1, 1):int(round(x)) + 2].max())  # noqa: E731
+            if at(lag) < SIDE_REPEAT and at(2 * lag) - at(lag) >= SIDE_DOUBLE_SHARE:
+                return Octave(period_s=2 * found.period_s, short_s=found.period_s, by_sides=True)
     return found
 
 
