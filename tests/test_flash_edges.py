@@ -165,3 +165,12 @@ def test_broadside_keeps_the_smooth_edges_near_the_widest():
     the broadside ones stand."""
     edges = [(1000.0, True), (990.0, True), (1010.0, True), (1050.0, False)] + [(530.0, True)] * 6
     assert sorted(spectral.broadside(edges)) == [990.0, 1000.0, 1010.0]
+
+
+def test_frames_nowhere_over_the_noise_read_no_edges():
+    """Noise 60 dB under the noise level given: after the noise's expectation is taken out every frame is empty,
+    and the flash frames give no plateau to read edges on (no edges, no error)."""
+    rng = np.random.default_rng(0)
+    noise = rng.standard_normal(4000) + 1j * rng.standard_normal(4000)
+    edges = spectral.flash_edges(noise, prf_hz=10000.0, window_s=0.004, noise_power=1e6)
+    assert edges.low_hz is None and edges.high_hz is None and edges.n_frames == 0

@@ -243,7 +243,10 @@ def flash_edges(signal, *, prf_hz, window_s, noise_power, differenced=False, hop
         # flash reads wider (+5 % at a plateau 12 dB over the noise); its expectation is taken out
         column = power[:, frame] if differenced else np.maximum(power[:, frame] - noise_level, 0.0)
         valid = column[np.isfinite(column)]
-        plateau = np.median(valid[valid > np.percentile(valid, 99) * 1e-2])
+        lit = valid[valid > np.percentile(valid, 99) * 1e-2]
+        if not len(lit):  # the frame stands nowhere over the noise's expectation
+            continue
+        plateau = np.median(lit)
         if plateau < noise_level * 10 ** ((OCCUPIED_DB if differenced else EDGE_PLATEAU_DB) / 10):
             continue
         used += counted
