@@ -64,6 +64,10 @@ def targets(rows):
 IMPAIRMENTS = {
     "another radar's chirps, a burst every 37.3 chirps": lambda path, out: hostile.interfered(path, out, 37.3),
     "another radar's chirps, a burst every 9.71 chirps": lambda path, out: hostile.interfered(path, out, 9.71),
+    "the same, bursts of 24 samples": lambda path, out: hostile.interfered(path, out, 9.71, burst_samples=24),
+    "the same, bursts of 0.04 of the full scale": lambda path, out: hostile.interfered(path, out, 9.71,
+                                                                                       amplitude=1300.0),
+    "another radar's chirps, a burst every 2.43 chirps": lambda path, out: hostile.interfered(path, out, 2.43),
     "TX-RX leakage drifting 1 % and 0.05 rad, DC offset": lambda path, out: hostile.leaking(path, out),
 }
 
@@ -84,6 +88,7 @@ def compare(base, rows, bin_m):
     counts = {"highest_image_db": None}
     counts |= dict.fromkeys(("images", "image_classes", "image_classes_left", "marked", "class_changed", "moved_ok",
                              "values"), 0)
+    counts |= {"captures": 1, "interfered": rows[0].get("interfered_share") or 0.0}
     for row in targets(rows):
         match = [b for b in targets(base) if abs(b["range_m"] - row["range_m"]) <= 2 * bin_m]
         if not match:
@@ -122,10 +127,11 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as tmp, threadpool_limits(limits=1):
         work = Path(tmp)
         items = captures(work, args.scenes)
-        n_targets = 0
+        n_targets, clean_marked = 0, 0
         for name, path, params in items:
             base = process_capture(path, params)
             n_targets += len(targets(base.rows))
+            clean_marked += bool(base.rows[0].get("interfered_share"))
             out = work / f"impaired_{name}"
             for share in shares:
                 hostile.overdriven(path, out, share)
@@ -135,7 +141,8 @@ def main(argv=None):
                 add(others[impairment], compare(base.rows, process_capture(out, params).rows, base.params.range_bin_m))
             out.unlink()
     print(f"{len(items)} captures ({len(SAMPLES)} bundled samples, {args.scenes} default-sweep scenes), {n_targets} "
-          f"targets unclipped; {time.perf_counter() - start:.0f} s\n")
+          f"targets unclipped; {clean_marked} of the unimpaired captures with chirps marked interfered; "
+          f"{time.perf_counter() - start:.0f} s\n")
     print("| share clipped | images | highest image, dB under its target (ceiling) | their echo reads drone/bird | "
           "marked `clipping_image` | left drone/bird | targets whose class changed | values moved >3 % given `ok` | "
           "values compared |")
@@ -145,12 +152,12 @@ def main(argv=None):
         highest = "-" if t["highest_image_db"] is None else f"{t['highest_image_db']:.1f}"
         print(f"| {share:g} | {t['images']} | {highest} ({image_ceiling_db(share):.1f}) | {t['image_classes']} | "
               f"{t['marked']} | {t['image_classes_left']} | {t['class_changed']} | {t['moved_ok']} | {t['values']} |")
-    print("\n| impairment | new detections | read drone/bird | targets whose class changed | values moved >3 % given "
-          "`ok` | values compared |")
-    print("|---|---|---|---|---|---|")
+    print("\n| impairment | chirps marked interfered (mean share) | new detections | read drone/bird | targets whose "
+          "class changed | values moved >3 % given `ok` | values compared |")
+    print("|---|---|---|---|---|---|---|")
     for impairment, t in others.items():
-        print(f"| {impairment} | {t['images']} | {t['image_classes_left']} | {t['class_changed']} | {t['moved_ok']} | "
-              f"{t['values']} |")
+        print(f"| {impairment} | {t['interfered'] / t['captures']:.3f} | {t['images']} | {t['image_classes_left']} | "
+              f"{t['class_changed']} | {t['moved_ok']} | {t['values']} |")
     return 0
 
 

@@ -225,20 +225,20 @@ def overdriven(path, out, share):
 
 
 def interfered(path, out, period_chirps, *, burst_samples=6, amplitude=13000.0, seed=0):
-    """``path`` with another FMCW radar's chirps crossing ours (the receiver gain 6 dB lower to make room): in one
-    chirp every ``period_chirps`` (no whole number: the two radars repeat at rates apart), a burst of
-    ``burst_samples`` samples sweeping through the IF band, Hann-tapered, ``amplitude`` counts, at a place in the chirp
-    that walks with the crossing."""
+    """``path`` with another FMCW radar's chirps crossing ours (the receiver gain 6 dB lower to make room): its k-th
+    chirp crosses ours at ``k * period_chirps`` chirp periods (no whole number: the two radars repeat at rates apart),
+    leaving in that chirp, at that fraction of it, a burst of ``burst_samples`` samples sweeping through the IF band,
+    Hann-tapered, ``amplitude`` counts."""
     rng = np.random.default_rng(seed)
 
     def change(counts, attrs):
         counts = 0.5 * counts
         n_chirps, n_samples = counts.shape
-        chirps = np.flatnonzero(np.diff(np.floor(np.arange(n_chirps + 1) / period_chirps)) > 0)
         k = np.arange(burst_samples)
         taper = np.hanning(burst_samples + 2)[1:-1]
-        for chirp in chirps:
-            first = int((chirp / period_chirps) % 1 * (n_samples - burst_samples))
+        for crossing in np.arange(period_chirps, n_chirps, period_chirps):
+            chirp, fraction = int(crossing), crossing % 1
+            first = int(fraction * (n_samples - burst_samples))
             counts[chirp, first:first + burst_samples] += amplitude * taper * np.cos(
                 np.pi * k ** 2 / burst_samples + rng.uniform(0, 2 * np.pi))
         return counts
