@@ -31,7 +31,6 @@ a sixteenth of a 16-RX capture, and one real FFT of each chirp.
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import windows
 
 from mdpipe.io.radarlog import RadarlogReader
 
@@ -111,6 +110,14 @@ class Bursts:
         return block
 
 
+def tukey(n, share):
+    """Tukey window of ``n`` samples, flat but for half-cosine tapers over ``share / 2`` of it a side
+    (``scipy.signal.windows.tukey(n, share)``; the processing path does not import scipy)."""
+    x = np.arange(n) / max(n - 1, 1)
+    edge = np.minimum(x, 1 - x)
+    return np.where(edge < share / 2, 0.5 * (1 - np.cos(2 * np.pi * edge / share)), 1.0)
+
+
 def _smoothed(envelope, taps=3):
     return np.convolve(envelope, np.ones(taps) / taps, mode="same")
 
@@ -173,7 +180,7 @@ def find_bursts(reader, *, read_chirps=READ_CHIRPS, channel=0):
         return empty
     reads = max(1, int(np.ceil(m / read_chirps)))
     edges = np.linspace(0, m, reads + 1).astype(int)  # reads of near-equal length: no short last one
-    window = windows.tukey(n, TAPER_SHARE)
+    window = tukey(n, TAPER_SHARE)
     chirps, spans = [], []
     for first, stop in zip(edges[:-1], edges[1:]):
         samples = reader.read_counts(first, stop, channels=[channel])[0].astype(np.float32)
