@@ -118,11 +118,3 @@ def test_lagrange_basis_is_barycentric_interpolator(k):
 def test_fold_hz_into_the_span():
     np.testing.assert_allclose(doppler.fold_hz([0.0, 499.0, 500.0, 1250.0, -1250.0, -500.0], prf_hz=1000.0),
                                [0.0, 499.0, -500.0, 250.0, -250.0, -500.0])
-
-
-@pytest.mark.parametrize("n, share", [(64, 0.25), (65, 0.25), (2048, 0.25), (16, 0.5)])
-def test_tukey_is_scipys(n, share):
-    from scipy.signal.windows import tukey
-
-    from mdpipe.process import interference
-    assert np.allclose(interference.tukey(n, share), tukey(n, share), atol=1e-12)

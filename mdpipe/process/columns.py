@@ -99,9 +99,6 @@ COLUMNS = (
     Column("clipped_share", "-", "share of the samples read in pass 1 (the chirps probed) at the int16 full scale: "
            "over 0 a weaker detection may be clipping's image (statuses `clipping_image`)",
            "float samples (no full scale known)"),
-    Column("interfered_share", "-", "share of the chirps crossed by another radar's chirps (a burst broadband in "
-           "range), their burst samples replaced by the neighbouring chirps' before any transform "
-           "(`mdpipe/process/interference.py`)", "never (0 without bursts)"),
     Column("mdpipe_version", "-", "version of mdpipe that made the row", "never"),
     Column("notes", "-", "`; `-separated: the class's reason, why each withheld feature is withheld, warnings about "
            "the capture (clipping)", "never"),
