@@ -227,20 +227,25 @@ def overdriven(path, out, share):
 def interfered(path, out, period_chirps, *, burst_samples=6, amplitude=13000.0, seed=0):
     """``path`` with another FMCW radar's chirps crossing ours (the receiver gain 6 dB lower to make room): its k-th
     chirp crosses ours at ``k * period_chirps`` chirp periods (no whole number: the two radars repeat at rates apart),
-    leaving in that chirp, at that fraction of it, a burst of ``burst_samples`` samples sweeping through the IF band,
-    Hann-tapered, ``amplitude`` counts."""
+    at that fraction of our chirp. The beat of the two sweeps passes through 0 Hz at the crossing, its frequency
+    changing at the difference of their slopes; the receiver's anti-alias filter passes it from the Nyquist frequency
+    down to 0 and back up: a burst of ``burst_samples`` samples (the filter's band over the slopes' difference) centred
+    on the crossing, ``amplitude`` counts, its envelope flat but for the filter's roll-off over the outer 20 % (a
+    Tukey taper), its spectrum flat over the IF band. A crossing near either end of our ramp leaves part of a burst."""
     rng = np.random.default_rng(seed)
 
     def change(counts, attrs):
         counts = 0.5 * counts
         n_chirps, n_samples = counts.shape
-        k = np.arange(burst_samples)
-        taper = np.hanning(burst_samples + 2)[1:-1]
+        n = np.arange(n_samples)
         for crossing in np.arange(period_chirps, n_chirps, period_chirps):
-            chirp, fraction = int(crossing), crossing % 1
-            first = int(fraction * (n_samples - burst_samples))
-            counts[chirp, first:first + burst_samples] += amplitude * taper * np.cos(
-                np.pi * k ** 2 / burst_samples + rng.uniform(0, 2 * np.pi))
+            chirp, centre = int(crossing), (crossing % 1) * n_samples
+            u = (n - centre) / burst_samples + 0.5  # 0 .. 1 across the burst
+            inside = (u >= 0) & (u <= 1)
+            edge = np.minimum(u, 1 - u)[inside]
+            envelope = np.where(edge < 0.1, 0.5 * (1 - np.cos(np.pi * edge / 0.1)), 1.0)
+            counts[chirp, inside] += amplitude * envelope * np.cos(
+                np.pi * (n[inside] - centre) ** 2 / burst_samples + rng.uniform(0, 2 * np.pi))
         return counts
     return _rewritten(path, out, change, gain=0.5)
 
