@@ -83,6 +83,18 @@ VALUE_KEYS = tuple(key for primary, derived in FEATURE_GROUPS.items() for key in
 STATUS_KEYS = tuple(f"{key}_status" for key in VALUE_KEYS)
 FEATURE_KEYS = VALUE_KEYS + ("aliased", "n_rotors", "n_blades", "n_blades_source", "stft_window_s", "stft_hop_s") \
     + STATUS_KEYS
+WITHHELD_KEPT = ("snr_db", "snr_db_status")  # a withheld echo's own strength: measured, whatever made it
+
+
+def withheld_row(row, *, status, note, capture_notes=()):
+    """``row`` read as an echo that a receiver impairment may have made: class ``none``, every feature but its SNR
+    withheld with ``status``, a blade count given by the user kept, its notes ``note`` and ``capture_notes``."""
+    withheld = [key for key in FEATURE_KEYS if key not in WITHHELD_KEPT]
+    return {**row, **dict.fromkeys(key for key in withheld if key not in STATUS_KEYS),
+            **dict.fromkeys((key for key in STATUS_KEYS if key in withheld), status),
+            "n_blades": row["n_blades"] if row["n_blades_source"] == "given" else None,
+            "n_blades_source": "given" if row["n_blades_source"] == "given" else None,
+            "class": "none", "notes": "; ".join([note, *capture_notes])}
 
 
 @dataclass

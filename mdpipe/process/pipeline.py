@@ -8,7 +8,7 @@ import numpy as np
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
-from mdpipe.process import flashes, memory, ranging, saturation, selection
+from mdpipe.process import flashes, interference, memory, ranging, saturation, selection
 from mdpipe.process.classify import classify
 from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analyse_target
 
@@ -100,7 +100,7 @@ def clipped_share(reader, stats):
     return stats.clipped_fraction if reader.layout.sample_dtype == "int16" else None
 
 
-def _base_row(path, stats, process, params, clipped):
+def _base_row(path, stats, process, params, clipped, common):
     return {
         "file": str(path), "target": None, "class": "none", "range_m": None, "range_bin": None,
         "range_min_m": None, "range_max_m": None, "rx_gain_db": None, **dict.fromkeys(FEATURE_KEYS),
@@ -108,7 +108,7 @@ def _base_row(path, stats, process, params, clipped):
         "elevation_deg": process.elevation_deg, "n_blades": process.n_blades,
         "n_blades_source": None if process.n_blades is None else "given", "threshold_db": process.threshold_db,
         "wavelength_m": params.wavelength_m, "prf_hz": params.prf_hz, "dwell_s": params.duration_s(stats.n_chirps),
-        "clipped_share": clipped, "mdpipe_version": __version__,
+        "clipped_share": clipped, "interference_share": common.spike_share, "mdpipe_version": __version__,
     }
 
 
@@ -140,6 +140,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             raise ParameterError(f"{path}: the range gate [{process.min_range_m:g}, {process.max_range_m:g}] m holds "
                                  f"{n_gate} bin(s) of {params.range_bin_m:.3g} m; widen it")
         max_range_m = min(process.max_range_m, params.max_range_m)
+        common = interference.common_mode(reader, window=process.range_window)
         stats = ranging.gate_statistics(reader, window=process.range_window, zero_pad=process.zero_pad,
                                         min_range_m=process.min_range_m, max_range_m=max_range_m,
                                         chunk_chirps=process.chunk_chirps)
@@ -158,9 +159,12 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         if clipped:
             capture_notes.append(f"{clipped:.2%} of the samples sit at the int16 full scale (clipped): "
                                  "amplitudes and spectra are distorted")
+        if common.crossed:
+            capture_notes.append(f"{common.spike_share:.2%} of the chirps hold a burst lighting most range bins at once "
+                                 "(another radar's chirps crossing ours)")
         rows, analyses = [], []
         if not detections:
-            row = _base_row(path, stats, process, params, clipped)
+            row = _base_row(path, stats, process, params, clipped, common)
             row["notes"] = "; ".join([no_detection_note(test, process)] + capture_notes)
             return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row],
                                  noise_power=noise, process=process, detection_test=test)
@@ -176,7 +180,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
                                       flash_views=flash_views(reader, track_bins, weight, process),
                                       ramp_share=params.sampled_duration_s / params.chirp_period_s)
             range_min_m, range_max_m = float(track.range_m.min()), float(track.range_m.max())
-            row = _base_row(path, stats, process, params, clipped)
+            row = _base_row(path, stats, process, params, clipped, common)
             row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),
                        range_min_m=range_min_m, range_max_m=range_max_m, rx_gain_db=rx_gain_db)
             row.update(analysis.row)
@@ -187,6 +191,8 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             analyses.append(analysis)
         levels_db = [detection.snr_db if row["snr_db"] is None else row["snr_db"]
                      for detection, row in zip(detections, rows)]
+        rows = interference.crossed_rows(rows, [np.abs(signal) ** 2 for _, signal, _, _ in targets], common,
+                                         capture_notes)
         rows = saturation.saturated_rows(rows, levels_db, clipped, capture_notes)
     return CaptureResult(str(path), params, layout, stats, detections, analyses, rows, noise_power=noise,
                          process=process, detection_test=test)

@@ -19,9 +19,8 @@ them apart; lower the receiver gain).
 
 import numpy as np
 
-from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS
+from mdpipe.process.features import withheld_row
 
-KEPT = ("snr_db", "snr_db_status")  # an image's own strength: measured, whatever made the echo
 IMAGE_MARGIN_DB = 16.0  # images stood at most 20 log10(s) + 9.5 dB under their target (s = 0.1 % - 50 %): 6 dB more
 
 
@@ -41,12 +40,7 @@ def _image_row(row, strongest, *, level_db, clipped_share, capture_notes):
             f"under that target, within the {-ceiling_db:.1f} dB clipping's harmonics and intermodulation reach; its "
             f"echo read as {row['class']} ({row['notes'].split('; ')[0].removeprefix('class: ')}); lower the receiver "
             "gain")
-    withheld = [key for key in FEATURE_KEYS if key not in KEPT]
-    return {**row, **dict.fromkeys(key for key in withheld if key not in STATUS_KEYS),
-            **dict.fromkeys((key for key in STATUS_KEYS if key in withheld), "clipping_image"),
-            "n_blades": row["n_blades"] if row["n_blades_source"] == "given" else None,
-            "n_blades_source": "given" if row["n_blades_source"] == "given" else None,
-            "class": "none", "notes": "; ".join([note, *capture_notes])}
+    return withheld_row(row, status="clipping_image", note=note, capture_notes=capture_notes)
 
 
 def saturated_rows(rows, snr_db, clipped_share, capture_notes=()):
