@@ -50,8 +50,8 @@ class CommonMode:
     spikes : int
         Chirps whose common mode stands out (bursts).
     profile : ndarray (n_bins,)
-        Mean over the spikes of each range bin's power over its median (bins of the unpadded grid, 0 .. N/2); None
-        without spikes.
+        Mean over the spikes of each range bin's power over its median over the chirps (counts^2; bins of the
+        unpadded grid, 0 .. N/2); None without spikes.
     range_bin_m : float
     """
 
@@ -77,15 +77,15 @@ def bin_typical(power):
 
 
 def read_common_mode(samples, window):
-    """Common mode (per chirp) and spikes (bool, per chirp) of a read, and each bin's power over its median (M, B),
-    from its samples (M, N) of one channel."""
+    """Common mode (per chirp) and spikes (bool, per chirp) of a read, and each bin's power over its median over the
+    read's chirps (M, B: counts^2), from its samples (M, N) of one channel."""
     residual = samples - samples.mean(axis=0)
-    ratio = np.abs(np.fft.rfft(residual * window, axis=1)) ** 2
-    ratio /= bin_typical(ratio)
-    series = np.quantile(ratio[:, 1:], QUANTILE, axis=1)
+    power = np.abs(np.fft.rfft(residual * window, axis=1)) ** 2
+    typical = bin_typical(power)
+    series = np.quantile(power[:, 1:] / typical[1:], QUANTILE, axis=1)
     centre = np.median(series)
     spread = 1.4826 * np.median(np.abs(series - centre))
-    return series, series > max(MIN_RISE * centre, centre + SPIKE_SPREADS * spread), ratio
+    return series, series > max(MIN_RISE * centre, centre + SPIKE_SPREADS * spread), power - typical
 
 
 def common_mode(reader, *, window="hann", read_chirps=READ_CHIRPS, channel=0):
@@ -96,10 +96,10 @@ def common_mode(reader, *, window="hann", read_chirps=READ_CHIRPS, channel=0):
     series, spikes, profile = [], 0, np.zeros(n // 2 + 1)
     for first, stop in zip(edges[:-1], edges[1:]):
         samples = reader.read_counts(first, stop, channels=[channel])[0].astype(np.float32)
-        part, spiked, ratio = read_common_mode(samples, taper)
+        part, spiked, excess = read_common_mode(samples, taper)
         series.append(part)
         spikes += int(spiked.sum())
-        profile += ratio[spiked].sum(axis=0)
+        profile += excess[spiked].sum(axis=0)
     return CommonMode(np.concatenate(series), spikes, profile / spikes if spikes else None, reader.params.range_bin_m)
 
 
@@ -111,19 +111,23 @@ def correlation(a, b):
 
 
 def source_ratio(common, range_m):
-    """How much more the spikes light the bin at ``range_m`` than the median bin."""
+    """How much more power the spikes add to the bin at ``range_m`` than to the median bin (a burst adds alike to
+    every bin; a flash or a clipped echo most to its own)."""
     index = int(np.clip(round(range_m / common.range_bin_m), 0, len(common.profile) - 1))
     return float(common.profile[index] / max(np.median(common.profile[1:]), np.finfo(float).tiny))
 
 
 def crossed_rows(rows, powers, common, capture_notes=()):
     """The target rows of one capture (``powers``: each target's power per chirp along its track) read for another
-    radar's bursts (``common``: the capture's :class:`CommonMode`). Returns new rows; a capture not crossed keeps its
-    rows as they are."""
+    radar's bursts (``common``: the capture's :class:`CommonMode`); rows read ``none`` stay as they are. Returns new
+    rows; a capture not crossed keeps its rows as they are."""
     if not common.crossed:
         return rows
     out = []
     for row, power in zip(rows, powers):
+        if row["class"] == "none":  # claims no target (a clipping image among them)
+            out.append(row)
+            continue
         follows = correlation(np.asarray(power, dtype=np.float64), common.series.astype(np.float64))
         source = source_ratio(common, row["range_m"])
         if follows >= CROSSED_CORRELATION and source < SOURCE_RATIO:
