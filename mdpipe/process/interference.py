@@ -31,6 +31,7 @@ from mdpipe.process.features import withheld_row
 from mdpipe.process.ranging import range_window
 
 READ_CHIRPS = 1024
+TYPICAL_EVERY = 4
 QUANTILE = 0.25
 SPIKE_SPREADS = 12.0
 MIN_RISE = 2.0
@@ -70,8 +71,9 @@ class CommonMode:
 
 
 def bin_typical(power):
-    """Each bin's median of ``power`` (M, B) over the M chirps; a bin without power gets the smallest positive one."""
-    typical = np.median(power, axis=0)
+    """Each bin's median of ``power`` (M, B) over every ``TYPICAL_EVERY``-th of the M chirps (256 of a read: the
+    median's spread is that of 256 draws); a bin without power gets the smallest positive one."""
+    typical = np.median(power[::TYPICAL_EVERY], axis=0)
     positive = typical[typical > 0]
     return np.maximum(typical, positive.min() if len(positive) else 1.0)
 
@@ -80,9 +82,12 @@ def read_common_mode(samples, window):
     """Common mode (per chirp) and spikes (bool, per chirp) of a read, and each bin's power over its median over the
     read's chirps (M, B: counts^2), from its samples (M, N) of one channel."""
     residual = samples - samples.mean(axis=0)
-    power = np.abs(np.fft.rfft(residual * window, axis=1)) ** 2
+    spectrum = np.fft.rfft(residual * window, axis=1)
+    power = spectrum.real ** 2 + spectrum.imag ** 2
     typical = bin_typical(power)
-    series = np.quantile(power[:, 1:] / typical[1:], QUANTILE, axis=1)
+    ratio = power[:, 1:] / typical[1:]
+    k = int(QUANTILE * (ratio.shape[1] - 1))  # the order statistic (no interpolation: 3x faster than np.quantile)
+    series = np.partition(ratio, k, axis=1)[:, k]
     centre = np.median(series)
     spread = 1.4826 * np.median(np.abs(series - centre))
     return series, series > max(MIN_RISE * centre, centre + SPIKE_SPREADS * spread), power - typical
