@@ -43,10 +43,9 @@ def test_bursts_light_most_range_bins_and_flashes_do_not():
     """Under the range window (Hann) the bursts of the middle half of the chirp stand out of the common mode; a burst
     near a ramp's end is attenuated with the echoes it would disturb. No flash chirp is a spike."""
     x, chirps, centres, flashes = _chirps()
-    spiked = np.zeros(M, dtype=bool)
-    for first in range(0, M, interference.READ_CHIRPS):
-        spiked[first:first + interference.READ_CHIRPS] = interference.read_common_mode(
-            x[first:first + interference.READ_CHIRPS], np.hanning(N))[1]
+    spiked, rows = np.zeros(M, dtype=bool), interference.read_chirps(N)
+    for first in range(0, M, rows):
+        spiked[first:first + rows] = interference.read_common_mode(x[first:first + rows], np.hanning(N))[1]
     middle = chirps[(centres > N / 4) & (centres < 3 * N / 4) & ~np.isin(chirps, flashes)]
     assert len(middle) > 80 and np.all(spiked[middle])
     assert set(np.flatnonzero(spiked)) <= set(chirps.tolist())

@@ -104,7 +104,7 @@ COLUMNS = (
            "read as their echo (statuses `interference`)", "never (0 without bursts)"),
     Column("mdpipe_version", "-", "version of mdpipe that made the row", "never"),
     Column("notes", "-", "`; `-separated: the class's reason, why each withheld feature is withheld, warnings about "
-           "the capture (clipping)", "never"),
+           "the capture (clipping, another radar's chirps)", "never"),
 )
 BY_NAME = {column.name: column for column in COLUMNS}
 

@@ -10,7 +10,7 @@ from dataclasses import replace
 import numpy as np
 
 from mdpipe.errors import ParameterError
-from mdpipe.process import flashes, ranging
+from mdpipe.process import flashes, interference, ranging
 
 GIB = 2**30
 PASS2_BINS_PER_TARGET = 64  # bins a target's path may cross (a bird at 15 m/s over 1 s at 0.23 m bins)
@@ -45,7 +45,9 @@ def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_b
     Returns
     -------
     dict
-        ``{part: bytes}``; the peak is ``max(pass 1, pass 2) + analysis + base``. Pass 1 holds, in each of
+        ``{part: bytes}``; the peak is ``max(pass 0, pass 1, pass 2) + analysis + base`` and the common mode
+        per chirp. Pass 0 (:func:`mdpipe.process.interference.common_mode`) holds one read of one channel and its
+        transforms. Pass 1 holds, in each of
         the ``ranging.WORKERS`` threads that have a chunk, a read buffer of a chunk's probed chirps and
         its DFT at the K bins (real product and complex result, 24 B per chirp, channel and bin; then
         the result, the gate's slow-time copies and a conjugate, 8 B per bin and 24 B per gate bin)
@@ -82,8 +84,10 @@ def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_b
     share = max(params.sampled_duration_s / params.chirp_period_s, flashes.RAMP_MIN_SHARE)
     slots = min(n_chirps * flashes.RAMP_PARTS / share, flashes.RAMP_MAX_SLOTS)
     analysis = process.max_targets * n_chirps * ANALYSIS_BYTES_PER_CHIRP + views + int(slots) * RAMP_SLOT_BYTES
-    return {"pass 1": pass1, "pass 2": pass2, "analysis": analysis, "base": BASE_BYTES,
-            "peak": max(pass1, pass2) + analysis + BASE_BYTES}
+    pass0 = interference.read_chirps(params.n_samples) * n * (sample_itemsize + interference.READ_BYTES_PER_SAMPLE)
+    common = 24 * n_chirps  # the common mode per chirp, kept to the end, and its float64 copy when rows are read
+    return {"pass 0": pass0, "pass 1": pass1, "pass 2": pass2, "analysis": analysis, "base": BASE_BYTES,
+            "peak": max(pass0, pass1, pass2) + analysis + common + BASE_BYTES}
 
 
 def check_memory(reader, process):
