@@ -80,6 +80,12 @@ def test_an_echo_that_follows_the_bursts_is_read_as_theirs():
     assert out[0]["class"] == "none" and out[0]["snr_db"] == 20.0
     assert {out[0][key] for key in STATUS_KEYS if key != "snr_db_status"} == {"interference"}
     assert out[0]["notes"].endswith("; a warning") and "its echo read as drone" in out[0]["notes"]
+    # a drone whose only sign is flashes of an ambiguous period: in a crossed capture the bursts repeat as flashes do
+    flashes = {**_row(60.0), "chopping_freq_hz": None, "chopping_freq_hz_status": "ambiguous_period"}
+    comb = _row(63.0)  # a comb: the bursts' random phases make no lines
+    out = interference.crossed_rows([flashes, comb], [target, target], common)
+    assert out[0]["class"] == "none" and out[0]["chopping_freq_hz_status"] == "interference"
+    assert "flashes of an ambiguous period" in out[0]["notes"] and out[1] == comb
     few = interference.CommonMode(series, interference.MIN_SPIKES - 1, profile, range_bin_m=1.5)
     assert interference.crossed_rows(rows, [phantom, target, source], few) is rows  # not crossed: as they are
 

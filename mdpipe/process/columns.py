@@ -100,8 +100,9 @@ COLUMNS = (
            "over 0 a weaker detection may be clipping's image (statuses `clipping_image`)",
            "float samples (no full scale known)"),
     Column("interference_share", "-", "share of the chirps holding a burst that lights most range bins at once "
-           "(another radar's chirps crossing ours): from 8 such chirps on, a detection whose power follows them is "
-           "read as their echo (statuses `interference`)", "never (0 without bursts)"),
+           "(another radar's chirps crossing ours): from 8 such chirps on, a detection whose power follows them, or "
+           "a drone seen only by flashes of an ambiguous period, is read as their echo (statuses `interference`)",
+           "never (0 without bursts)"),
     Column("mdpipe_version", "-", "version of mdpipe that made the row", "never"),
     Column("notes", "-", "`; `-separated: the class's reason, why each withheld feature is withheld, warnings about "
            "the capture (clipping, another radar's chirps)", "never"),

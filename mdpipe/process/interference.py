@@ -17,21 +17,25 @@ on 983 with the median: an echo's sidelobes. A strong 77 GHz drone whose blade t
 every bin in its flashes, spiking now and then.
 
 A capture with ``MIN_SPIKES`` spikes or more is crossed. A detection of a crossed capture whose power follows the
-common mode (their correlation over the chirps ``CROSSED_CORRELATION`` or more) is the bursts' echo, unless the spikes
-add the most power to its own bin (``SOURCE_RATIO`` times what they add to the median bin: a flash, or a clipped
-echo, seen in every bin, whose source this target is; a burst adds alike to every bin). It is read as ``none``,
-every feature but its SNR withheld as ``interference``; a genuine target whose echo the bursts outweigh is withheld
+common mode (their correlation over the chirps ``CROSSED_CORRELATION`` or more), or a drone whose only sign of a rotor
+is blade flashes of an ambiguous period (bursts repeat as flashes do; spikes are the strongest of them, the weaker
+ones lift a weak echo's power periodically too: a branch and two moving points of the bench, correlating 0.03-0.19,
+read as drones), is the bursts' echo, unless the spikes add the most power to its own bin (``SOURCE_RATIO`` times
+what they add to the median bin: a flash, or a clipped echo, seen in every bin, whose source this target is; a burst
+adds alike to every bin). It is read as ``none``, every feature but its SNR withheld as ``interference``; a genuine
+target whose echo the bursts outweigh, or a drone seen only by its flashes, is withheld
 with them; a row read ``none`` already is left as it is. Correlations measured on the bench's 28 captures crossed
 every 9.71 chirps: phantoms 0.42-0.91; the targets 0.0-0.71 (over 0.4: two sparrows read as drones, two drones);
-unimpaired, 0.34 at most (a gull whose wings light other bins). The 77 GHz drone's own rows correlate 0.43 (its capture is not
-crossed: one spike), the top hundredth of its chirps by common mode adding 230 times more power to its bins than to
-the median bin.
+unimpaired, 0.34 at most (a gull whose wings light other bins). The 77 GHz drone's own rows correlate 0.43 (its
+capture is not crossed: one spike), the top hundredth of its chirps by common mode adding 230 times more power to its
+bins than to the median bin.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 
+from mdpipe.process.classify import ROTOR_EVIDENCE
 from mdpipe.process.features import withheld_row
 from mdpipe.process.ranging import range_window
 
@@ -148,11 +152,13 @@ def crossed_rows(rows, powers, common, capture_notes=()):
             out.append(row)
             continue
         follows = correlation(np.asarray(power, dtype=np.float64), common.series.astype(np.float64))
-        source = source_ratio(common, row["range_m"])
-        if follows >= CROSSED_CORRELATION and source < SOURCE_RATIO:
-            note = (f"class: possibly the echo of another radar's chirps: {common.spike_share:.1%} of the chirps hold a "
-                    f"burst lighting most range bins at once, and this echo's power follows them (correlation "
-                    f"{follows:.2f}); its echo read as {row['class']} "
+        flashes_only = row["class"] == "drone" and row["chopping_freq_hz_status"] in ROTOR_EVIDENCE
+        if source_ratio(common, row["range_m"]) < SOURCE_RATIO and (follows >= CROSSED_CORRELATION or flashes_only):
+            why = (f"this echo's power follows them (correlation {follows:.2f})" if follows >= CROSSED_CORRELATION
+                   else "they repeat as blade flashes do, and this echo's only sign of a rotor is flashes of an "
+                        "ambiguous period")
+            note = (f"class: possibly the echo of another radar's chirps: {common.spike_share:.1%} of the chirps "
+                    f"hold a burst lighting most range bins at once, and {why}; its echo read as {row['class']} "
                     f"({row['notes'].split('; ')[0].removeprefix('class: ')})")
             row = withheld_row(row, status="interference", note=note, capture_notes=capture_notes)
         out.append(row)

@@ -45,8 +45,8 @@ STATUS_CODES = {
     "not_applicable": "not a quantity of this target (e.g. the wingbeat of an echo with blade flashes)",
     "clipping_image": ("the capture clips and this echo is weak enough to be a harmonic or intermodulation image of its "
                        "strongest target (read as `none`)"),
-    "interference": ("another radar's chirps cross the capture and this echo's power follows their bursts (read as "
-                     "`none`)"),
+    "interference": ("another radar's chirps cross the capture and this echo's power follows their bursts, or its only "
+                     "sign of a rotor is flashes of an ambiguous period, as bursts repeat (read as `none`)"),
 }
 
 
