@@ -19,7 +19,7 @@ from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MI
 from mdpipe.process.filters import moving_average, running_median
 from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period, power_period, ramp_readable,
                                     ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
-from mdpipe.process.periodicity import autocorrelation, find_period
+from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, Octave, flap_glide_share, wing_reach_hz,
                                      wingbeat)
@@ -1003,8 +1003,8 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
         # repeats almost exactly each 1/N turn, and exactly each turn
         r = autocorrelation(micro)
         turn = prf_hz / float(spacing_hz[0])
-        at = lambda lag: float(r[max(int(round(lag)) - 2, 0):int(round(lag)) + 3].max())  # noqa: E731
-        if at(turn / pattern) >= TAGGED_REPEAT and at(turn) > at(turn / pattern):
+        sub, whole = best_near(r, turn / pattern, half_width=2), best_near(r, turn, half_width=2)
+        if sub >= TAGGED_REPEAT and whole > sub:
             return spacing_hz * pattern, pattern, pattern
     return spacing_hz, combs.blade_count_from_sublines(lines, float(spacing_hz[0]), half_width_hz=band_hz), pattern
 

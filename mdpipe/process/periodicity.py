@@ -50,6 +50,13 @@ def autocorrelation(signal, *, signed=False):
     return r / r[0] if r[0] > 0 else r
 
 
+def best_near(r, lag, *, half_width, lowest=0):
+    """The largest of ``r`` within ``half_width`` lags of ``lag`` (rounded), from lag ``lowest`` on: a repeat read
+    where a fractional period, or rates a little apart, put it."""
+    centre = int(round(lag))
+    return float(r[max(centre - half_width, lowest):centre + half_width + 1].max())
+
+
 def bartlett_error(correlated, n_products):
     """Bartlett's standard error of an autocorrelation coefficient resting on ``n_products`` products, for a
     signal correlated over the lags whose coefficients are ``correlated`` (and not beyond them):

@@ -34,7 +34,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from mdpipe.process.doppler import Spectrogram, noise_level_per_bin, spectrogram
 from mdpipe.process.filters import moving_average
-from mdpipe.process.periodicity import Period, bartlett_error, period_from_autocorrelation, refine_period
+from mdpipe.process.periodicity import Period, bartlett_error, best_near, period_from_autocorrelation, refine_period
 
 FRAME_S = 0.064
 HOP_S = 0.016
@@ -312,8 +312,8 @@ def _signed_double(found, frames):
         for r in _side_autocorrelations(frames, row_percentile):
             if r is None or 2 * lag + 2 >= REPEAT_SHARE * len(r):
                 continue
-            at = lambda x: float(r[max(int(round(x)) - 1, 1):int(round(x)) + 2].max())  # noqa: E731
-            if at(lag) < SIDE_REPEAT and at(2 * lag) - at(lag) >= SIDE_DOUBLE_SHARE:
+            once, twice = best_near(r, lag, half_width=1, lowest=1), best_near(r, 2 * lag, half_width=1, lowest=1)
+            if once < SIDE_REPEAT and twice - once >= SIDE_DOUBLE_SHARE:
                 return Octave(period_s=2 * found.period_s, short_s=found.period_s, by_sides=True)
     return found
 
