@@ -42,7 +42,7 @@ from mdpipe.process.ranging import range_window
 READ_SAMPLES = 2**21      # samples of a read: 1024 chirps of 2048 (at least MIN_READ_CHIRPS, at most MAX_READ_CHIRPS)
 MIN_READ_CHIRPS, MAX_READ_CHIRPS = 64, 1024
 READ_BYTES_PER_SAMPLE = 64  # a read's float32 samples, residual and windowed copy, complex128 spectrum, float64 power,
-                            # ratio, excess and the partition's copy
+                            # ratio and the partition's copy, and 8 B to spare (the spikes' excess)
 TYPICAL_EVERY = 4         # each bin's median over every 4th chirp of a read
 QUANTILE = 0.25           # the common mode: this quantile over the range bins (an echo lights fewer than 3/4 of them)
 SPIKE_SPREADS = 12.0      # a spike: the common mode this many robust spreads over the read's median ...
@@ -91,8 +91,8 @@ def bin_typical(power):
 
 
 def read_common_mode(samples, window):
-    """Common mode (per chirp) and spikes (bool, per chirp) of a read, and each bin's power over its median over the
-    read's chirps (M, B: counts^2), from its samples (M, N) of one channel."""
+    """Common mode (per chirp) and spikes (bool, per chirp) of a read, and the spikes' power in each bin over the bin's
+    median over the read's chirps (spikes, B: counts^2), from its samples (M, N) of one channel."""
     residual = samples - samples.mean(axis=0)
     spectrum = np.fft.rfft(residual * window, axis=1)
     power = spectrum.real ** 2 + spectrum.imag ** 2
@@ -102,7 +102,8 @@ def read_common_mode(samples, window):
     series = np.partition(ratio, k, axis=1)[:, k]
     centre = np.median(series)
     spread = 1.4826 * np.median(np.abs(series - centre))
-    return series, series > max(MIN_RISE * centre, centre + SPIKE_SPREADS * spread), power - typical
+    spiked = series > max(MIN_RISE * centre, centre + SPIKE_SPREADS * spread)
+    return series, spiked, power[spiked] - typical
 
 
 def read_chirps(n_samples):
@@ -122,7 +123,7 @@ def common_mode(reader, *, window="hann", channel=0):
         part, spiked, excess = read_common_mode(samples, taper)
         series.append(part)
         spikes += int(spiked.sum())
-        profile += excess[spiked].sum(axis=0)
+        profile += excess.sum(axis=0)
     return CommonMode(np.concatenate(series), spikes, profile / spikes if spikes else None, reader.params.range_bin_m)
 
 
@@ -146,12 +147,13 @@ def crossed_rows(rows, powers, common, capture_notes=()):
     rows; a capture not crossed keeps its rows as they are."""
     if not common.crossed:
         return rows
+    series = common.series.astype(np.float64)
     out = []
     for row, power in zip(rows, powers):
         if row["class"] == "none":  # claims no target (a clipping image among them)
             out.append(row)
             continue
-        follows = correlation(np.asarray(power, dtype=np.float64), common.series.astype(np.float64))
+        follows = correlation(np.asarray(power, dtype=np.float64), series)
         flashes_only = row["class"] == "drone" and row["chopping_freq_hz_status"] in ROTOR_EVIDENCE
         if source_ratio(common, row["range_m"]) < SOURCE_RATIO and (follows >= CROSSED_CORRELATION or flashes_only):
             why = (f"this echo's power follows them (correlation {follows:.2f})" if follows >= CROSSED_CORRELATION
