@@ -86,6 +86,12 @@ FEATURE_KEYS = VALUE_KEYS + ("aliased", "n_rotors", "n_blades", "n_blades_source
 WITHHELD_KEPT = ("snr_db", "snr_db_status")  # a withheld echo's own strength: measured, whatever made it
 
 
+def read_as(row):
+    """What ``row``'s echo alone was read as, for the note of a row withheld (:func:`withheld_row`): its class and the
+    class's reason (the first of its notes)."""
+    return f"its echo read as {row['class']} ({row['notes'].split('; ')[0].removeprefix('class: ')})"
+
+
 def withheld_row(row, *, status, note, capture_notes=()):
     """``row`` read as an echo that a receiver impairment may have made: class ``none``, every feature but its SNR
     withheld with ``status``, a blade count given by the user kept, its notes ``note`` and ``capture_notes``."""

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mdpipe.process.classify import ROTOR_EVIDENCE
-from mdpipe.process.features import withheld_row
+from mdpipe.process.features import read_as, withheld_row
 from mdpipe.process.ranging import range_window
 
 READ_SAMPLES = 2**21      # samples of a read: 1024 chirps of 2048 (at least MIN_READ_CHIRPS, at most MAX_READ_CHIRPS)
@@ -160,8 +160,7 @@ def crossed_rows(rows, powers, common, capture_notes=()):
                    else "they repeat as blade flashes do, and this echo's only sign of a rotor is flashes of an "
                         "ambiguous period")
             note = (f"class: possibly the echo of another radar's chirps: {common.spike_share:.1%} of the chirps "
-                    f"hold a burst lighting most range bins at once, and {why}; its echo read as {row['class']} "
-                    f"({row['notes'].split('; ')[0].removeprefix('class: ')})")
+                    f"hold a burst lighting most range bins at once, and {why}; {read_as(row)}")
             row = withheld_row(row, status="interference", note=note, capture_notes=capture_notes)
         out.append(row)
     return out

@@ -19,7 +19,7 @@ them apart; lower the receiver gain).
 
 import numpy as np
 
-from mdpipe.process.features import withheld_row
+from mdpipe.process.features import read_as, withheld_row
 
 IMAGE_MARGIN_DB = 16.0  # images stood at most 20 log10(s) + 9.5 dB under their target (s = 0.1 % - 50 %): 6 dB more
 
@@ -37,9 +37,8 @@ def _image_row(row, strongest, *, level_db, clipped_share, capture_notes):
     ceiling_db = image_ceiling_db(clipped_share)
     note = (f"class: possibly an image of the target at {strongest['range_m']:.4g} m made by clipping: "
             f"{clipped_share:.2%} of the samples sit at the int16 full scale, and this echo stands {-level_db:.1f} dB "
-            f"under that target, within the {-ceiling_db:.1f} dB clipping's harmonics and intermodulation reach; its "
-            f"echo read as {row['class']} ({row['notes'].split('; ')[0].removeprefix('class: ')}); lower the receiver "
-            "gain")
+            f"under that target, within the {-ceiling_db:.1f} dB clipping's harmonics and intermodulation reach; "
+            f"{read_as(row)}; lower the receiver gain")
     return withheld_row(row, status="clipping_image", note=note, capture_notes=capture_notes)
 
 
