@@ -75,7 +75,8 @@ def test_an_echo_that_follows_the_bursts_is_read_as_theirs():
     target = rng.exponential(5e-8, 4000) + series * 1e-10      # its own echo outweighs the bursts
     source = series * 3e-9 + rng.exponential(1e-9, 4000)       # follows them, but they light its bin most
     rows = [_row(30.0), _row(45.0, "bird"), _row(7.5)]
-    out = interference.crossed_rows(rows, [phantom, target, source], common, ["a warning"])
+    signals = [np.sqrt(power) for power in (phantom, target, source)]  # slow time of those powers
+    out = interference.crossed_rows(rows, signals, common, ["a warning"])
     assert out[1] == rows[1] and out[2] == rows[2]
     assert out[0]["class"] == "none" and out[0]["snr_db"] == 20.0
     assert {out[0][key] for key in STATUS_KEYS if key != "snr_db_status"} == {"interference"}
@@ -83,11 +84,11 @@ def test_an_echo_that_follows_the_bursts_is_read_as_theirs():
     # a drone whose only sign is flashes of an ambiguous period: in a crossed capture the bursts repeat as flashes do
     flashes = {**_row(60.0), "chopping_freq_hz": None, "chopping_freq_hz_status": "ambiguous_period"}
     comb = _row(63.0)  # a comb: the bursts' random phases make no lines
-    out = interference.crossed_rows([flashes, comb], [target, target], common)
+    out = interference.crossed_rows([flashes, comb], [signals[1], signals[1]], common)
     assert out[0]["class"] == "none" and out[0]["chopping_freq_hz_status"] == "interference"
     assert "flashes of an ambiguous period" in out[0]["notes"] and out[1] == comb
     few = interference.CommonMode(series, interference.MIN_SPIKES - 1, profile, range_bin_m=1.5)
-    assert interference.crossed_rows(rows, [phantom, target, source], few) is rows  # not crossed: as they are
+    assert interference.crossed_rows(rows, signals, few) is rows  # not crossed: as they are
 
 
 def test_another_radars_bursts_leave_no_phantom_targets(tmp_path):

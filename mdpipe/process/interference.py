@@ -141,19 +141,19 @@ def source_ratio(common, range_m):
     return float(common.profile[index] / max(np.median(common.profile[1:]), np.finfo(float).tiny))
 
 
-def crossed_rows(rows, powers, common, capture_notes=()):
-    """The target rows of one capture (``powers``: each target's power per chirp along its track) read for another
+def crossed_rows(rows, signals, common, capture_notes=()):
+    """The target rows of one capture (``signals``: each target's slow time along its track) read for another
     radar's bursts (``common``: the capture's :class:`CommonMode`); rows read ``none`` stay as they are. Returns new
     rows; a capture not crossed keeps its rows as they are."""
     if not common.crossed:
         return rows
     series = common.series.astype(np.float64)
     out = []
-    for row, power in zip(rows, powers):
+    for row, signal in zip(rows, signals):
         if row["class"] == "none":  # claims no target (a clipping image among them)
             out.append(row)
             continue
-        follows = correlation(np.asarray(power, dtype=np.float64), series)
+        follows = correlation((np.abs(signal) ** 2).astype(np.float64), series)
         flashes_only = row["class"] == "drone" and row["chopping_freq_hz_status"] in ROTOR_EVIDENCE
         if source_ratio(common, row["range_m"]) < SOURCE_RATIO and (follows >= CROSSED_CORRELATION or flashes_only):
             why = (f"this echo's power follows them (correlation {follows:.2f})" if follows >= CROSSED_CORRELATION

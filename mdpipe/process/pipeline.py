@@ -192,7 +192,6 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         levels_db = [detection.snr_db if row["snr_db"] is None else row["snr_db"]
                      for detection, row in zip(detections, rows)]
         rows = saturation.saturated_rows(rows, levels_db, clipped, capture_notes)
-        rows = interference.crossed_rows(rows, [np.abs(signal) ** 2 for _, signal, _, _ in targets], common,
-                                         capture_notes)
+        rows = interference.crossed_rows(rows, [signal for _, signal, _, _ in targets], common, capture_notes)
     return CaptureResult(str(path), params, layout, stats, detections, analyses, rows, noise_power=noise,
                          process=process, detection_test=test)
