@@ -376,7 +376,7 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     if not profile.sum() > 0:
         return None
     divisors = range(2, int(period_chirps / shortest_chirps) + 1)
-    subs = [_repeat_at(r, lag / divisor) for divisor in divisors]
+    subs = [_sub_period_repeat(r, lag, divisor) for divisor in divisors]
     if any(sub >= RAMP_SUB_SHARE * peak for sub in subs):
         return False
     starts = np.arange(len(profile)) * train.slot_chirps  # a flash lies anywhere in its part
@@ -387,6 +387,18 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
         if np.isnan(sub) or expected < RAMP_VISIBLE_SIGMAS * sigma or sub >= RAMP_SUB_SHARE * expected:
             return None  # flashes there could go unseen, or under the noise (or no pairs of parts that far apart)
     return True
+
+
+def _sub_period_repeat(r, lag, divisor):
+    """How strongly the autocorrelation ``r`` (of flashes resolved within the ramp) repeats at ``lag / divisor`` as a
+    period would: the lesser of its repeats there and at twice that, for a divisor of 4 or more.
+
+    Flashes caught whole in their parts repeat alike at every multiple of their period. A fixed offset d between two
+    trains of the period (two rotors a phase apart) repeats at d and at ``lag - d`` only: at a quarter of the period
+    or less, d and ``lag - d`` are not 2d (for divisors 2 and 3, 2d is ``lag - d`` or the period itself, and an offset
+    is not told from a period)."""
+    sub = _repeat_at(r, lag / divisor)
+    return sub if divisor < 4 else min(sub, _repeat_at(r, 2 * lag / divisor))
 
 
 def ramp_repeat(train, period_chirps):
