@@ -348,7 +348,10 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     * no ``period / k`` repeats with ``RAMP_SUB_SHARE`` of the period's repeat (else False; rotors a phase apart
       repeat in part at many lags, 0.3-0.45 of the period's in a hexarotor), nor with that share of what flashes
       there would show, the share of them that falls within a ramp times the period's repeat, which must stand
-      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise);
+      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise); for k >= 4 a
+      repeat counts only where ``2 period / k`` repeats as well (:func:`_sub_period_repeat`: two quadrotors of the
+      default sweep, four rotors a phase apart, repeated at a fifth and a seventh of their flash period with 0.85 and
+      0.70 of it, and at twice those lags with 0.35 and 0.06);
     * the power's strongest peak past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it
       (else False);
     * the share within a ramp is that of the times ``i period / k`` after the power's flashes that falls within
