@@ -182,17 +182,21 @@ def test_ramp_parts_do_not_settle_flashes_every_other_one_falling_between_ramps(
 
 
 def test_ramp_parts_tell_two_rotors_a_phase_apart_from_a_shorter_period():
-    """Two rotors flashing every 37.5 chirps, the second 7.5 chirps (a fifth of the period) after the first: the
-    train repeats at 7.5 and 30 chirps (the offset, both ways) with about half its repeat at 37.5, and not at 15 or
-    22.5, where flashes every 7.5 chirps would repeat as strongly. The period is whole. A train that does flash
-    every 7.5 chirps repeats at 15 too: 37.5 chirps is not whole there."""
+    """Two rotors at one rate flashing every 37.5 chirps, the second 7.5 chirps (a fifth of the period) after the
+    first: the train repeats at 7.5 and 30 chirps (the offset, both ways: 2.3 and 0.66 times its repeat at 37.5,
+    which the flashes' wander blurs more than the fixed offset) and at 15 and 22.5 with 0.14 and 0.13 of it, where
+    flashes every 7.5 chirps would repeat as strongly. The period is whole (the sub-period alone read it not whole).
+    A train that does flash every 7.5 chirps repeats at 15 with 1.3 times it: 37.5 chirps is not whole there."""
     first = _ramp_parts(37.5, phase_chirps=0.3, wander=0.003, seed=3)
     second = _ramp_parts(37.5, phase_chirps=7.8, wander=0.003, seed=4)
     train = flashes.ramp_train(first + second, ramp_share=RAMP_SHARE, prf_hz=PRF_HZ)
     r, lag = train.correlation, 37.5 / train.slot_chirps
-    assert flashes._repeat_at(r, lag / 5) > 0.35 * flashes._repeat_at(r, lag) > flashes._repeat_at(r, 2 * lag / 5)
+    share = flashes.RAMP_SUB_SHARE * flashes._repeat_at(r, lag)
+    assert flashes._repeat_at(r, lag / 5) > share > flashes._repeat_at(r, 2 * lag / 5)
     assert flashes.ramp_repeats_whole(train, 37.5, shortest_chirps=2.7) is True
     fifth = flashes.ramp_train(_ramp_parts(7.5, phase_chirps=0.3, wander=0.003), ramp_share=RAMP_SHARE, prf_hz=PRF_HZ)
+    r = fifth.correlation
+    assert flashes._repeat_at(r, 2 * lag / 5) > flashes.RAMP_SUB_SHARE * flashes._repeat_at(r, lag)
     assert flashes.ramp_repeats_whole(fifth, 37.5, shortest_chirps=2.7) is False
 
 

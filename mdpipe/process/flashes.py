@@ -394,7 +394,8 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
 
 def _sub_period_repeat(r, lag, divisor):
     """How strongly the autocorrelation ``r`` (of flashes resolved within the ramp) repeats at ``lag / divisor`` as a
-    period would: the lesser of its repeats there and at twice that, for a divisor of 4 or more.
+    period would: the lesser of its repeats there and at twice that, for a divisor of 4 or more (where twice that
+    pairs too few parts to be read, the repeat at ``lag / divisor`` alone).
 
     Flashes caught whole in their parts repeat alike at every multiple of their period. A fixed offset d between two
     trains of the period (two rotors a phase apart) repeats at d and at ``lag - d`` only: at a quarter of the period
