@@ -415,30 +415,32 @@ class Rotation:
 def _time_domain_chopping_hz(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, min_hz, ramp=None):
     """Chopping (unaliased: the echo's period) or flash rate (aliased: flash timing) in Hz, None, or an ambiguity.
 
-    Returns (frequency_hz or None, note): a note names an ambiguity the flash times could not settle, unless the
-    echo resolved within the ramp (``ramp()``, a :class:`~mdpipe.process.flashes.RampTrain`, or None) repeats
-    whole at one of the two periods (:func:`~mdpipe.process.flashes.ramp_repeats_whole`).
+    Returns (frequency_hz or None, note, rates_hz): a note names an ambiguity the flash times could not settle,
+    unless the echo resolved within the ramp (``ramp()``, a :class:`~mdpipe.process.flashes.RampTrain`, or None)
+    repeats whole at one of the two periods (:func:`~mdpipe.process.flashes.ramp_repeats_whole`); ``rates_hz`` then
+    holds the two flash rates it leaves (else empty).
     """
     if aliased:
         found = flash_period(difference(demodulated), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ,
                              max_period_s=1.0 / min_hz, noise_power=2 * noise_power)  # a difference doubles noise
         if found is None:
-            return None, None
+            return None, None, ()
         settled = found.ambiguous and _settled_in_ramp(ramp, found.period_s * prf_hz,
                                                        (1, found.ambiguous), prf_hz=prf_hz)
         if settled:
-            return prf_hz / settled, None
+            return prf_hz / settled, None, ()
         if found.ambiguous:
             return None, (f"the flash times fit {found.period_s * 1e3:.3g} ms and, by their pairs, "
                           f"{found.period_s * 1e3 / found.ambiguous:.3g} ms (flashes shorter than a chirp are sampled "
-                          "stroboscopically; a longer dwell or a higher PRF tells them apart)")
-        return 1.0 / found.period_s, None
+                          "stroboscopically; a longer dwell or a higher PRF tells them apart)"), (
+                1.0 / found.period_s, found.ambiguous / found.period_s)
+        return 1.0 / found.period_s, None, ()
     micro = highpass(demodulated, prf_hz=prf_hz, cutoff_hz=HIGHPASS_SHARE * half_width_hz)
     found = find_period(micro, sample_rate_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ,
                         max_period_s=1.0 / min_hz)
     if found is None or found.strength < MIN_ROTOR_PERIODICITY:
-        return None, None
-    return 1.0 / found.period_s, None
+        return None, None, ()
+    return 1.0 / found.period_s, None, ()
 
 
 def demodulated_parts(parts, track_hz, *, prf_hz):
@@ -531,16 +533,37 @@ def _power_flashes(found, *, n_blades, alternate=lambda period_s: False):
 
 def _folded_comb_by_power(found, comb_hz, *, n_blades):
     """The chopping frequencies of a folded comb (spacings ``comb_hz``) that the echo's power period confirms for
+    the blade count ``n_blades`` (given or measured), else None (:func:`_folded_comb_at_rate`). Only a power that
+    repeats whole (``found``, a :class:`~mdpipe.process.flashes.PowerPeriod` or None) is read.
+    """
+    if found is None or not found.whole:
+        return None
+    return _folded_comb_at_rate(1.0 / found.period_s, comb_hz, n_blades=n_blades)
+
+
+def _folded_comb_by_flash_times(rates_hz, comb_hz, *, n_blades):
+    """The chopping frequencies of a folded comb (spacings ``comb_hz``) that one of the two flash rates an unsettled
+    flash-time ambiguity leaves (``rates_hz``) confirms for the blade count ``n_blades`` (given or measured), else
+    None (:func:`_folded_comb_at_rate`; where both rates confirm it, none is taken). The comb and the flash times
+    are read apart (lines in the dwell's spectrum, flashes in time), so a comb that one of the flash rates confirms
+    for the N known is the rotors' (four 3-blade rotors at 94 GHz, N measured: their combs at the turn rates, every
+    third line standing out on each, and flash times at 5.8 ms or, by their pairs, 1.93 ms: twice the chopping)."""
+    confirmed = [c for c in (_folded_comb_at_rate(rate_hz, comb_hz, n_blades=n_blades) for rate_hz in rates_hz)
+                 if c is not None]
+    return confirmed[0] if len(confirmed) == 1 else None
+
+
+def _folded_comb_at_rate(rate_hz, comb_hz, *, n_blades):
+    """The chopping frequencies of a folded comb (spacings ``comb_hz``) that blade flashes at ``rate_hz`` confirm for
     the blade count ``n_blades`` (given or measured), else None.
 
     The power of N blades repeats 1 (even N) or 1-2 (odd N) times per chopping period; the comb is the
-    chopping frequency or, one blade differing, the turn rate. With N, the power's rate over the comb's
-    tells which: 1 or 2 (odd N) times it, the chopping; N or 2N (odd N) times, the turn rate. Only a power that repeats
-    whole (``found``, a :class:`~mdpipe.process.flashes.PowerPeriod` or None) is read.
+    chopping frequency or, one blade differing, the turn rate. With N, the flashes' rate over the comb's
+    tells which: 1 or 2 (odd N) times it, the chopping; N or 2N (odd N) times, the turn rate.
     """
-    if n_blades is None or found is None or not found.whole:
+    if n_blades is None:
         return None
-    ratio = 1.0 / found.period_s / float(np.median(comb_hz))
+    ratio = rate_hz / float(np.median(comb_hz))
     per_chop = rotor.flashes_per_revolution(n_blades) // n_blades
     for factor, chopping_hz in ((1, comb_hz), (per_chop, comb_hz), (n_blades, comb_hz * n_blades),
                                 (per_chop * n_blades, comb_hz * n_blades)):
@@ -652,7 +675,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             sides_band_hz = extent_hz
             if halfwidth_mps is not None and band_hz > 0:  # its reach, for the blade reach test
                 halfwidth_mps *= max(1.0, extent_hz / band_hz)
-    timed_hz, ambiguity = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
+    timed_hz, ambiguity, ambiguous_rates_hz = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
                                                    prf_hz=prf_hz, noise_power=noise_power, min_hz=slowest_hz,
                                                    ramp=ramp)
     if ambiguity is not None and comb is None:
@@ -719,8 +742,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
             return Rotation.withheld("ambiguous_period", note)
     elif chopping_hz is not None and aliased:
-        confirmed = _folded_comb_by_power(power(), chopping_hz,
-                                          n_blades=n_blades if n_blades is not None else measured_n)
+        known = n_blades if n_blades is not None else measured_n
+        confirmed = _folded_comb_by_power(power(), chopping_hz, n_blades=known)
+        if confirmed is None:
+            confirmed = _folded_comb_by_flash_times(ambiguous_rates_hz, chopping_hz, n_blades=known)
         if confirmed is None:
             note = (f"rotation not estimable: a folded line comb at {float(np.median(chopping_hz)):.4g} Hz that "
                     "neither the flash times nor the power's period confirm (folded combs can coincide by chance)")
@@ -1000,7 +1025,7 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
         return spacing_hz * pattern, pattern, pattern
     if pattern and _power_flashes_as(pattern, spacing_hz, power()):
         return spacing_hz * pattern, pattern, pattern
-    if pattern and not aliased and _pattern_on_rotors_apart(lines, spacing_hz, pattern, band_hz=band_hz):
+    if pattern and _pattern_on_rotors_apart(lines, spacing_hz, pattern, band_hz=band_hz):
         return spacing_hz * pattern, pattern, pattern
     if aliased:
         return spacing_hz, None, pattern
