@@ -608,7 +608,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     repeats whole (rotors whose lines between the comb's cancel flash a whole number of times per comb period, but
     their power does not repeat whole at the flashes): the flash times stand. Flash times twice a folded comb are an
     odd N (flashing twice per chopping period) or an even N with one blade differing (the comb lines the turn
-    rate): the blade count, given or measured, tells which; without it nothing is reported. A chopping frequency
+    rate): the blade count, given or measured, tells which; without it nothing is reported. A folded comb without
+    flash times is taken where, N given or measured, the power repeating whole (:func:`_folded_comb_by_power`) or
+    one of the two rates a flash-time ambiguity leaves (:func:`_folded_comb_by_flash_times`) confirms it. A chopping frequency
     that rests on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade
     turning that fast could make at the elevation given (:func:`least_tip_speed_mps`) is not a rotor.
     A comb whose every k-th line stands out, read neither as a turn (blade count given or measured, see
@@ -1014,8 +1016,10 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     :class:`~mdpipe.process.flashes.PowerPeriod` or None) flashing as N blades turning at the comb's rate
     do, when that is more than twice per spacing (N > 2: a comb of equal blades at the chopping frequency
     flashes once or twice per spacing, as two blades turning at it do; :func:`_power_flashes_as`). Folded
-    (aliased) combs tell N only by the power (their lines interleave orders: the pattern alone, even of the N
-    given, is not trusted). An unfolded comb whose odd orders stand out is one at twice its spacing, read half a
+    (aliased) combs tell N only by the power or by the pattern on rotors resolved at rates apart (their lines
+    interleave orders: the pattern on one comb, even of the N given, is not trusted; the other rotors' lines folded
+    onto a comb's orders fall on its multiples of N no more often than between, and a pattern that two rotors'
+    combs both show is their blades'). An unfolded comb whose odd orders stand out is one at twice its spacing, read half a
     spacing off its hub's Doppler (:func:`~mdpipe.process.combs.odd_orders_stand_out`).
     """
     if not aliased and combs.odd_orders_stand_out(lines, float(spacing_hz[0]), half_width_hz=band_hz):
