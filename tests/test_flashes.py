@@ -148,17 +148,19 @@ def test_a_speckled_echo_is_not_flashes():
 RAMP_SHARE = 0.8  # the ramp's share of the chirp period: flashes in the other fifth go unseen
 
 
-def _ramp_parts(period_chirps, *, n_chirps=6000, phase_chirps=0.3, amplitude=6.0, wander=0.0, parts=8, seed=3):
+def _ramp_parts(period_chirps, *, n_chirps=6000, phase_chirps=0.3, amplitude=6.0, wander=0.0, parts=8, seed=3,
+                ramp_share=RAMP_SHARE):
     """A flash train resolved within the ramp: flash j at ``phase + j period (1 + wander sin(2 pi j / J))`` (chirps,
-    J flashes in all) lands, whole, in the part of its chirp's ramp that holds it, or nowhere when it falls between
-    ramps; unit complex noise in every part. Each flash is shorter than a part (0.1 chirp)."""
+    J flashes in all) lands, whole, in the part of its chirp's ramp (the first ``ramp_share`` of the chirp) that holds
+    it, or nowhere when it falls between ramps; unit complex noise in every part. Each flash is shorter than a
+    part."""
     rng = np.random.default_rng(seed)
     x = (rng.standard_normal((n_chirps, parts)) + 1j * rng.standard_normal((n_chirps, parts))) / np.sqrt(2)
     j = np.arange(int(n_chirps / period_chirps) - 1)
     for t in phase_chirps + j * period_chirps * (1 + wander * np.sin(2 * np.pi * j / len(j))):
         chirp, within = int(t), t % 1.0
-        if within < RAMP_SHARE:
-            x[chirp, int(within / RAMP_SHARE * parts)] += amplitude * np.exp(2j * np.pi * rng.uniform())
+        if within < ramp_share:
+            x[chirp, int(within / ramp_share * parts)] += amplitude * np.exp(2j * np.pi * rng.uniform())
     return x
 
 
@@ -198,6 +200,19 @@ def test_ramp_parts_tell_two_rotors_a_phase_apart_from_a_shorter_period():
     r = fifth.correlation
     assert flashes._repeat_at(r, 2 * lag / 5) > flashes.RAMP_SUB_SHARE * flashes._repeat_at(r, lag)
     assert flashes.ramp_repeats_whole(fifth, 37.5, shortest_chirps=2.7) is False
+
+
+@pytest.mark.parametrize("ramp_share, period_chirps, multiple", [
+    (0.55, 7.225, 5), (0.6, 7.725, 4), (0.65, 7.275, 5), (0.6, 7.525, 5), (0.6, 7.55, 5), (0.65, 7.55, 5)])
+def test_ramp_parts_with_lags_unread_do_not_take_a_multiple_for_whole(ramp_share, period_chirps, multiple):
+    """A ramp over 0.55-0.65 of the chirp pairs too few parts at lags whose fraction of a chirp falls in the gap:
+    those lags are unread (NaN). Flashes every 7.2-7.7 chirps then repeat at their period, or at twice it, where
+    the best of the readable lags nearby is noise. Their multiple (4 or 5 periods) is not whole there: the period
+    could not be seen (the first three were read whole once a repeat at twice the period counted with the best
+    readable lag nearby; the last three before that, with the best readable lag about the period itself)."""
+    train = flashes.ramp_train(_ramp_parts(period_chirps, wander=0.003, ramp_share=ramp_share),
+                               ramp_share=ramp_share, prf_hz=PRF_HZ)
+    assert flashes.ramp_repeats_whole(train, multiple * period_chirps, shortest_chirps=2.7) is not True
 
 
 def test_ramp_parts_of_noise_tell_nothing():

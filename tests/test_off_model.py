@@ -1212,3 +1212,23 @@ def test_a_folded_comb_whose_blade_count_the_rotors_tell_confirmed_by_the_flash_
     assert row["rotation_rate_hz_status"] == row["chopping_freq_hz_status"] == "ok"
     assert row["rotation_rate_hz"] == pytest.approx(np.mean(np.abs(rates)), rel=0.003)
     assert row["chopping_freq_hz"] == pytest.approx(3 * row["rotation_rate_hz"])
+
+
+def test_a_folded_comb_on_the_prf_grid_is_not_confirmed_by_flash_times_at_it(tmp_path):
+    """Two 2-blade rotors of 16 point scatterers at one rate, 90 rev/s (chopping 180 Hz), 86 deg apart, aliased at
+    94 GHz (PRF 13620 Hz), N = 2 given. The chopping period is 75.67 chirps: the folded comb lies at 60.0 Hz, the
+    PRF over 227 (three chopping periods make a whole number of chirps), and the flash times fit 60 Hz or 360 Hz.
+    Comb and flash rate are then one stroboscopic repeat, not two readings; the power, resolved within the ramp,
+    repeats whole at 180 Hz, three times the comb, which no blade count reconciles with it. Withheld (taking the
+    flash rate that agreed with the comb read 60 Hz, a third of the chopping, `ok`)."""
+    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=58.7367e-6, chirp_period_s=73.4209e-6,
+                 sample_rate_hz=2179216.744011836, n_samples=128, n_chirps=13526, n_channels=2)
+    pair = {"name": "pair", "type": "multirotor", "elevation_deg": 5.0, "body_rcs_m2": 0.01,
+            "motion": {"position_m": [15.0, 0.0, 3.0], "velocity_mps": [0.0, 0.0, 0.0]},
+            "rotors": {"count": 2, "blade_profile": "points", "points_per_blade": 16, "root_m": 0.01,
+                       "phase_deg": [0, 86], "blade_rcs_m2": 0.003, "blades": 2, "arm_m": 0.25,
+                       "blade_length_m": 0.12, "rev_per_s": [90.0, 90.0]}}
+    row = sweep_row(tmp_path, radar, pair, moving_snr_db=15.0, seed=7, n_blades=2)
+    assert row["class"] == "drone" and row["aliased"]
+    assert row["chopping_freq_hz"] is None and row["chopping_freq_hz_status"] == "ambiguous_period"
+    assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == "ambiguous_period"

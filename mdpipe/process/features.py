@@ -541,16 +541,26 @@ def _folded_comb_by_power(found, comb_hz, *, n_blades):
     return _folded_comb_at_rate(1.0 / found.period_s, comb_hz, n_blades=n_blades)
 
 
-def _folded_comb_by_flash_times(rates_hz, comb_hz, *, n_blades):
-    """The chopping frequencies of a folded comb (spacings ``comb_hz``) that one of the two flash rates an unsettled
-    flash-time ambiguity leaves (``rates_hz``) confirms for the blade count ``n_blades`` (given or measured), else
-    None (:func:`_folded_comb_at_rate`; where both rates confirm it, none is taken). The comb and the flash times
-    are read apart (lines in the dwell's spectrum, flashes in time), so a comb that one of the flash rates confirms
-    for the N known is the rotors' (four 3-blade rotors at 94 GHz, N measured: their combs at the turn rates, every
-    third line standing out on each, and flash times at 5.8 ms or, by their pairs, 1.93 ms: twice the chopping)."""
-    confirmed = [c for c in (_folded_comb_at_rate(rate_hz, comb_hz, n_blades=n_blades) for rate_hz in rates_hz)
-                 if c is not None]
-    return confirmed[0] if len(confirmed) == 1 else None
+def _folded_comb_by_flash_times(rates_hz, comb_hz, *, n_blades, power, prf_hz, dwell_s):
+    """The chopping frequencies of a folded comb (spacings ``comb_hz``) that the two flash rates an unsettled
+    flash-time ambiguity leaves (``rates_hz``) confirm for the blade count ``n_blades`` (given or measured): those
+    every confirming rate gives (:func:`_folded_comb_at_rate`), else None.
+
+    The comb and the flash times are read apart (lines in the dwell's spectrum, flashes in time), so a comb that a
+    flash rate confirms for the N known is the rotors' (four 3-blade rotors at 94 GHz, N measured: their combs at the
+    turn rates, every third line standing out on each, and flash times at 5.8 ms or, by their pairs, 1.93 ms: twice
+    the chopping). Not where the echo's power (``power``, a :class:`~mdpipe.process.flashes.PowerPeriod` or None)
+    repeats whole: it did not confirm the comb (:func:`_folded_comb_by_power`), and it outweighs flash times; nor
+    where the comb's spacing or the rate lies on the PRF's grid (:func:`_on_span_grid`): both may then be one
+    stroboscopic repeat (two rotors at 90 rev/s, 2 blades, sampled at PRF / 75.7 folded a comb to PRF / 227, and
+    their flash times to it or 6x it; the power repeated whole at 3x it, the chopping)."""
+    if power is not None and power.whole:
+        return None
+    confirmed = [c for c in (_folded_comb_at_rate(rate_hz, comb_hz, n_blades=n_blades) for rate_hz in rates_hz
+                             if not _on_span_grid(rate_hz, prf_hz=prf_hz, dwell_s=dwell_s)) if c is not None]
+    if not confirmed or _on_span_grid(float(np.median(comb_hz)), prf_hz=prf_hz, dwell_s=dwell_s):
+        return None
+    return confirmed[0] if all(np.allclose(c, confirmed[0]) for c in confirmed) else None
 
 
 def _folded_comb_at_rate(rate_hz, comb_hz, *, n_blades):
@@ -747,7 +757,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         known = n_blades if n_blades is not None else measured_n
         confirmed = _folded_comb_by_power(power(), chopping_hz, n_blades=known)
         if confirmed is None:
-            confirmed = _folded_comb_by_flash_times(ambiguous_rates_hz, chopping_hz, n_blades=known)
+            confirmed = _folded_comb_by_flash_times(ambiguous_rates_hz, chopping_hz, n_blades=known, power=power(),
+                                                    prf_hz=prf_hz, dwell_s=dwell_s)
         if confirmed is None:
             note = (f"rotation not estimable: a folded line comb at {float(np.median(chopping_hz)):.4g} Hz that "
                     "neither the flash times nor the power's period confirm (folded combs can coincide by chance)")
@@ -943,15 +954,22 @@ def _span_ambiguity(what, frequency_hz, *, prf_hz, dwell_s, power):
     2-blade rotors chopping at 141.3 Hz sampled at 6283 Hz (PRF / 44.5) folded to a comb at 70.6 Hz (PRF / 89),
     and their flash times repeated at 70.7 Hz; six rotors chopping at 161 Hz flashed every 432 chirps (27.6 Hz).
     """
-    span_orders = prf_hz / frequency_hz
-    if abs(span_orders - round(span_orders)) * frequency_hz > 1.0 / dwell_s:
+    if not _on_span_grid(frequency_hz, prf_hz=prf_hz, dwell_s=dwell_s):
         return None
+    span_orders = prf_hz / frequency_hz
     if _whole_multiple(power(), frequency_hz) >= 1:
         return None
     note = (f"rotation not estimable: the {what} at {frequency_hz:.4g} Hz, the PRF over {span_orders:.1f}: "
             "a whole multiple of it folds onto it, its flashes shorter than a chirp caught at some passages only; "
             "another PRF tells which")
     return Rotation.withheld("ambiguous_period", note)
+
+
+def _on_span_grid(frequency_hz, *, prf_hz, dwell_s):
+    """Whether ``frequency_hz`` is the PRF over a whole number M within what the dwell resolves (``1 / dwell_s``: M
+    chirps a period, drifting less than a chirp over the dwell), where a whole multiple of it folds onto it."""
+    span_orders = prf_hz / frequency_hz
+    return abs(span_orders - round(span_orders)) * frequency_hz <= 1.0 / dwell_s
 
 
 def _whole_multiple(found, frequency_hz):
@@ -1019,7 +1037,8 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     (aliased) combs tell N only by the power or by the pattern on rotors resolved at rates apart (their lines
     interleave orders: the pattern on one comb, even of the N given, is not trusted; the other rotors' lines folded
     onto a comb's orders fall on its multiples of N no more often than between, and a pattern that two rotors'
-    combs both show is their blades'). An unfolded comb whose odd orders stand out is one at twice its spacing, read half a
+    combs both show is their blades'; not for a comb on the PRF's grid, :func:`_on_span_grid`, whose folded orders
+    beyond the span fall back onto its own and its neighbours'). An unfolded comb whose odd orders stand out is one at twice its spacing, read half a
     spacing off its hub's Doppler (:func:`~mdpipe.process.combs.odd_orders_stand_out`).
     """
     if not aliased and combs.odd_orders_stand_out(lines, float(spacing_hz[0]), half_width_hz=band_hz):
@@ -1029,7 +1048,8 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
         return spacing_hz * pattern, pattern, pattern
     if pattern and _power_flashes_as(pattern, spacing_hz, power()):
         return spacing_hz * pattern, pattern, pattern
-    if pattern and _pattern_on_rotors_apart(lines, spacing_hz, pattern, band_hz=band_hz):
+    on_grid = aliased and _on_span_grid(float(spacing_hz[0]), prf_hz=prf_hz, dwell_s=len(micro) / prf_hz)
+    if pattern and not on_grid and _pattern_on_rotors_apart(lines, spacing_hz, pattern, band_hz=band_hz):
         return spacing_hz * pattern, pattern, pattern
     if aliased:
         return spacing_hz, None, pattern

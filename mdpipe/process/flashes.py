@@ -349,7 +349,8 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
       repeat in part at many lags, 0.3-0.45 of the period's in a hexarotor), nor with that share of what flashes
       there would show, the share of them that falls within a ramp times the period's repeat, which must stand
       ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise); for k >= 4 a
-      repeat counts only where ``2 period / k`` repeats as well (:func:`_sub_period_repeat`: two quadrotors of the
+      repeat counts only where ``2 period / k`` repeats as well, if that is read (:func:`_sub_period_repeat`, whose
+      value the next test reads too: two quadrotors of the
       default sweep, four rotors a phase apart, repeated at a fifth and a seventh of their flash period with 0.85 and
       0.70 of it, and at twice those lags with 0.35 and 0.06);
     * the power's strongest peak past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it
@@ -394,15 +395,29 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
 
 def _sub_period_repeat(r, lag, divisor):
     """How strongly the autocorrelation ``r`` (of flashes resolved within the ramp) repeats at ``lag / divisor`` as a
-    period would: the lesser of its repeats there and at twice that, for a divisor of 4 or more (where twice that
-    pairs too few parts to be read, the repeat at ``lag / divisor`` alone).
+    period would: for a divisor of 4 or more, the lesser of its repeats there and at twice that; NaN where a lag
+    about ``lag / divisor`` (within +-``AROUND``) pairs too few parts to be read, and the repeat at ``lag / divisor``
+    alone where one about twice it does (a ramp over 0.6 of the chirp leaves lags a fraction of a chirp apart unread:
+    the best of the rest is noise; a true flash period 5 times too long read whole so).
 
     Flashes caught whole in their parts repeat alike at every multiple of their period. A fixed offset d between two
     trains of the period (two rotors a phase apart) repeats at d and at ``lag - d`` only: at a quarter of the period
     or less, d and ``lag - d`` are not 2d (for divisors 2 and 3, 2d is ``lag - d`` or the period itself, and an offset
-    is not told from a period)."""
-    sub = _repeat_at(r, lag / divisor)
-    return sub if divisor < 4 else min(sub, _repeat_at(r, 2 * lag / divisor))
+    is not told from a period; for even divisors 2d is the period over half the divisor, which a shorter period would
+    repeat at too)."""
+    sub = _read_around(r, lag / divisor)
+    if divisor < 4 or np.isnan(sub):
+        return sub
+    twice = _read_around(r, 2 * lag / divisor)
+    return sub if np.isnan(twice) else min(sub, twice)
+
+
+def _read_around(r, lag):
+    """The autocorrelation ``r`` at its best within +-``AROUND`` (and a slot) of ``lag`` slots where every one of
+    those lags is read, else NaN (flashes there could go unseen)."""
+    first, stop = _around(lag)
+    window = r[first:stop]
+    return float(np.max(window)) if len(window) and np.isfinite(window).all() else np.nan
 
 
 def ramp_repeat(train, period_chirps):
@@ -414,11 +429,16 @@ def ramp_repeat(train, period_chirps):
     return _repeat_at(train.correlation, lag)
 
 
+def _around(lag):
+    """The slots ``[first, stop)`` within +-``AROUND`` (and a slot) of ``lag`` slots."""
+    return max(int(np.floor(lag * (1 - AROUND))) - 1, 1), int(np.ceil(lag * (1 + AROUND))) + 2
+
+
 def _best_lag(r, lag):
     """The lag at which the autocorrelation ``r`` is best within +-``AROUND`` (and a slot) of ``lag`` slots, None
     where none of those lags is read."""
-    first = max(int(np.floor(lag * (1 - AROUND))) - 1, 1)
-    window = r[first:int(np.ceil(lag * (1 + AROUND))) + 2]
+    first, stop = _around(lag)
+    window = r[first:stop]
     return first + int(np.nanargmax(window)) if np.isfinite(window).any() else None
 
 
