@@ -620,9 +620,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     odd N (flashing twice per chopping period) or an even N with one blade differing (the comb lines the turn
     rate): the blade count, given or measured, tells which; without it nothing is reported. A folded comb without
     flash times is taken where, N given or measured, the power repeating whole (:func:`_folded_comb_by_power`) or
-    one of the two rates a flash-time ambiguity leaves (:func:`_folded_comb_by_flash_times`) confirms it. A chopping frequency
-    that rests on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler than any blade
-    turning that fast could make at the elevation given (:func:`least_tip_speed_mps`) is not a rotor.
+    one of the two rates a flash-time ambiguity leaves (:func:`_folded_comb_by_flash_times`) confirms it. A
+    chopping frequency that rests on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler
+    than any blade turning that fast could make at the elevation given (:func:`least_tip_speed_mps`) is not a rotor.
     A comb whose every k-th line stands out, read neither as a turn (blade count given or measured, see
     :func:`_comb_blades`) nor by the echo's rate, is a turn of k blades (one differing, the chopping k times the
     spacing) or rotors at one rate cancelling the lines between (the chopping the spacing): withheld as
@@ -687,9 +687,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             sides_band_hz = extent_hz
             if halfwidth_mps is not None and band_hz > 0:  # its reach, for the blade reach test
                 halfwidth_mps *= max(1.0, extent_hz / band_hz)
-    timed_hz, ambiguity, ambiguous_rates_hz = _time_domain_chopping_hz(demodulated, aliased=aliased, half_width_hz=half_width_hz,
-                                                   prf_hz=prf_hz, noise_power=noise_power, min_hz=slowest_hz,
-                                                   ramp=ramp)
+    timed_hz, ambiguity, ambiguous_rates_hz = _time_domain_chopping_hz(
+        demodulated, aliased=aliased, half_width_hz=half_width_hz, prf_hz=prf_hz, noise_power=noise_power,
+        min_hz=slowest_hz, ramp=ramp)
     if ambiguity is not None and comb is None:
         note = f"rotation not estimable: {ambiguity}"
         return Rotation.withheld("ambiguous_period", note)
@@ -1038,8 +1038,9 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     interleave orders: the pattern on one comb, even of the N given, is not trusted; the other rotors' lines folded
     onto a comb's orders fall on its multiples of N no more often than between, and a pattern that two rotors'
     combs both show is their blades'; not for a comb on the PRF's grid, :func:`_on_span_grid`, whose folded orders
-    beyond the span fall back onto its own and its neighbours'). An unfolded comb whose odd orders stand out is one at twice its spacing, read half a
-    spacing off its hub's Doppler (:func:`~mdpipe.process.combs.odd_orders_stand_out`).
+    beyond the span fall back onto its own and its neighbours'). An unfolded comb whose odd orders stand out is one
+    at twice its spacing, read half a spacing off its hub's Doppler
+    (:func:`~mdpipe.process.combs.odd_orders_stand_out`).
     """
     if not aliased and combs.odd_orders_stand_out(lines, float(spacing_hz[0]), half_width_hz=band_hz):
         spacing_hz = 2 * spacing_hz
