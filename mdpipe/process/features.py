@@ -543,8 +543,8 @@ def _folded_comb_by_power(found, comb_hz, *, n_blades):
 
 def _folded_comb_by_flash_times(rates_hz, comb_hz, *, n_blades, power, prf_hz, dwell_s):
     """The chopping frequencies of a folded comb (spacings ``comb_hz``) that the two flash rates an unsettled
-    flash-time ambiguity leaves (``rates_hz``) confirm for the blade count ``n_blades`` (given or measured): those
-    every confirming rate gives (:func:`_folded_comb_at_rate`), else None.
+    flash-time ambiguity leaves (``rates_hz``) confirm for the blade count ``n_blades`` (given or measured), where
+    every rate that confirms it gives the same (:func:`_folded_comb_at_rate`); else None.
 
     The comb and the flash times are read apart (lines in the dwell's spectrum, flashes in time), so a comb that a
     flash rate confirms for the N known is the rotors' (four 3-blade rotors at 94 GHz, N measured: their combs at the

@@ -348,11 +348,11 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     * no ``period / k`` repeats with ``RAMP_SUB_SHARE`` of the period's repeat (else False; rotors a phase apart
       repeat in part at many lags, 0.3-0.45 of the period's in a hexarotor), nor with that share of what flashes
       there would show, the share of them that falls within a ramp times the period's repeat, which must stand
-      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise); for k >= 4 a
-      repeat counts only where ``2 period / k`` repeats as well, if that is read (:func:`_sub_period_repeat`, whose
-      value the next test reads too: two quadrotors of the
-      default sweep, four rotors a phase apart, repeated at a fifth and a seventh of their flash period with 0.85 and
-      0.70 of it, and at twice those lags with 0.35 and 0.06);
+      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise, or a lag about
+      ``period / k`` is unread); for k >= 4 a repeat counts only where ``2 period / k`` repeats as well, if that is
+      read (:func:`_sub_period_repeat`, read by both tests: two quadrotors of the default sweep, four rotors a phase
+      apart, repeated at a fifth and a seventh of their flash period with 0.85 and 0.70 of it, and at twice those
+      lags with 0.35 and 0.06);
     * the power's strongest peak past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it
       (else False);
     * the share within a ramp is that of the times ``i period / k`` after the power's flashes that falls within
@@ -397,8 +397,9 @@ def _sub_period_repeat(r, lag, divisor):
     """How strongly the autocorrelation ``r`` (of flashes resolved within the ramp) repeats at ``lag / divisor`` as a
     period would: for a divisor of 4 or more, the lesser of its repeats there and at twice that; NaN where a lag
     about ``lag / divisor`` (within +-``AROUND``) pairs too few parts to be read, and the repeat at ``lag / divisor``
-    alone where one about twice it does (a ramp over 0.6 of the chirp leaves lags a fraction of a chirp apart unread:
-    the best of the rest is noise; a true flash period 5 times too long read whole so).
+    alone where one about twice it does (a ramp over 0.55-0.65 of the chirp leaves lags some fractions of a chirp
+    apart unread, and the best of the rest nearby is noise: single trains were read whole at 4-5 times their flash
+    period).
 
     Flashes caught whole in their parts repeat alike at every multiple of their period. A fixed offset d between two
     trains of the period (two rotors a phase apart) repeats at d and at ``lag - d`` only: at a quarter of the period
