@@ -202,14 +202,12 @@ def test_ramp_parts_tell_two_rotors_a_phase_apart_from_a_shorter_period():
     assert flashes.ramp_repeats_whole(fifth, 37.5, shortest_chirps=2.7) is False
 
 
-@pytest.mark.parametrize("ramp_share, period_chirps, multiple", [
-    (0.55, 7.225, 5), (0.6, 7.725, 4), (0.65, 7.275, 5), (0.6, 7.525, 5), (0.6, 7.55, 5), (0.65, 7.55, 5)])
+@pytest.mark.parametrize("ramp_share, period_chirps, multiple", [(0.55, 7.225, 5), (0.6, 7.725, 4), (0.65, 7.275, 5)])
 def test_ramp_parts_with_lags_unread_do_not_take_a_multiple_for_whole(ramp_share, period_chirps, multiple):
     """A ramp over 0.55-0.65 of the chirp pairs too few parts at lags whose fraction of a chirp falls in the gap:
-    those lags are unread (NaN). Flashes every 7.2-7.7 chirps then repeat at their period, or at twice it, where
-    the best of the readable lags nearby is noise. Their multiple (4 or 5 periods) is not whole there: the period
-    could not be seen (the first three were read whole once a repeat at twice the period counted with the best
-    readable lag nearby; the last three before that, with the best readable lag about the period itself)."""
+    those lags are unread (NaN). Flashes every 7.2-7.7 chirps then repeat at twice their period where the best of
+    the readable lags nearby is noise. Their multiple (4 or 5 periods) is not whole: their repeat at the period
+    itself stands (read whole when the lesser of it and the noise at twice it was taken)."""
     train = flashes.ramp_train(_ramp_parts(period_chirps, wander=0.003, ramp_share=ramp_share),
                                ramp_share=ramp_share, prf_hz=PRF_HZ)
     assert flashes.ramp_repeats_whole(train, multiple * period_chirps, shortest_chirps=2.7) is not True

@@ -348,9 +348,9 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     * no ``period / k`` repeats with ``RAMP_SUB_SHARE`` of the period's repeat (else False; rotors a phase apart
       repeat in part at many lags, 0.3-0.45 of the period's in a hexarotor), nor with that share of what flashes
       there would show, the share of them that falls within a ramp times the period's repeat, which must stand
-      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise, or a lag about
-      ``period / k`` is unread); for k >= 4 a repeat counts only where ``2 period / k`` repeats as well, if that is
-      read (:func:`_sub_period_repeat`, read by both tests: two quadrotors of the default sweep, four rotors a phase
+      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise); for k >= 4 a
+      repeat counts only where ``2 period / k`` repeats as well, if every lag about that is read
+      (:func:`_sub_period_repeat`, read by both tests: two quadrotors of the default sweep, four rotors a phase
       apart, repeated at a fifth and a seventh of their flash period with 0.85 and 0.70 of it, and at twice those
       lags with 0.35 and 0.06);
     * the power's strongest peak past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it
@@ -395,18 +395,18 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
 
 def _sub_period_repeat(r, lag, divisor):
     """How strongly the autocorrelation ``r`` (of flashes resolved within the ramp) repeats at ``lag / divisor`` as a
-    period would: for a divisor of 4 or more, the lesser of its repeats there and at twice that; NaN where a lag
-    about ``lag / divisor`` (within +-``AROUND``) pairs too few parts to be read, and the repeat at ``lag / divisor``
-    alone where one about twice it does (a ramp over 0.55-0.65 of the chirp leaves lags some fractions of a chirp
-    apart unread, and the best of the rest nearby is noise: single trains were read whole at 4-5 times their flash
-    period).
+    period would (:func:`_repeat_at`, NaN where no lag about it is read): for a divisor of 4 or more, the lesser of
+    its repeats there and at twice that, where every lag within +-``AROUND`` of twice it is read, else the repeat at
+    ``lag / divisor`` alone (a ramp over 0.55-0.65 of the chirp leaves lags some fractions of a chirp apart unread,
+    and the best of the rest nearby may be noise: single trains were read whole at 4-5 times their flash period when
+    the lesser was taken so).
 
     Flashes caught whole in their parts repeat alike at every multiple of their period. A fixed offset d between two
     trains of the period (two rotors a phase apart) repeats at d and at ``lag - d`` only: at a quarter of the period
     or less, d and ``lag - d`` are not 2d (for divisors 2 and 3, 2d is ``lag - d`` or the period itself, and an offset
     is not told from a period; for even divisors 2d is the period over half the divisor, which a shorter period would
     repeat at too)."""
-    sub = _read_around(r, lag / divisor)
+    sub = _repeat_at(r, lag / divisor)
     if divisor < 4 or np.isnan(sub):
         return sub
     twice = _read_around(r, 2 * lag / divisor)
