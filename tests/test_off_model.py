@@ -1190,6 +1190,11 @@ def test_flashes_of_rotors_a_fifth_of_a_period_apart_resolved_within_the_ramp(tm
     assert row["chopping_freq_hz"] == pytest.approx(2 * np.mean(np.abs(rates)), rel=0.003)
 
 
+# a 94 GHz radar of the default sweep (scene 0045): PRF 13620 Hz, 0.99 s
+W_BAND_SWEEP = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=58.7367e-6, chirp_period_s=73.4209e-6,
+                    sample_rate_hz=2179216.744011836, n_samples=128, n_chirps=13526, n_channels=2)
+
+
 def test_a_folded_comb_whose_blade_count_the_rotors_tell_confirmed_by_the_flash_times(tmp_path):
     """Four 3-blade rotors of 16 point scatterers at 85.9-86.9 rev/s, one blade in three 1.74x as strong, aliased at
     94 GHz (a scene of the default sweep), no N given. Each rotor's folded comb lies at its turn rate, every third
@@ -1197,8 +1202,6 @@ def test_a_folded_comb_whose_blade_count_the_rotors_tell_confirmed_by_the_flash_
     give the chopping, 3 x 86.4 Hz. The flash times fit 5.8 ms or, by their pairs, 1.93 ms (518 Hz), and the power
     repeats at 5.8 ms in part: 1.93 ms is twice the chopping, as an odd N flashes. Read within 0.3 % (old code:
     withheld, a folded comb that neither the power nor flash times confirm)."""
-    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=58.7367e-6, chirp_period_s=73.4209e-6,
-                 sample_rate_hz=2179216.744011836, n_samples=128, n_chirps=13526, n_channels=2)
     rates = [86.6558, -85.8589, 86.2707, -86.8538]
     quad = {"name": "quad", "type": "multirotor", "elevation_deg": 8.87026, "body_rcs_m2": 0.0218865,
             "motion": {"position_m": [12.5908, 0.0863698, 13.4372], "velocity_mps": [0.0, 0.0, 0.0]},
@@ -1206,7 +1209,7 @@ def test_a_folded_comb_whose_blade_count_the_rotors_tell_confirmed_by_the_flash_
                        "phase_deg": [158.022, 107.694, 95.4374, 204.992], "blade_rcs_m2": 0.00292737,
                        "tilt_deg": [0.608046, 0.808864, -4.44568, 3.6525], "blades": 3, "arm_m": 0.255144,
                        "blade_length_m": 0.139801, "rev_per_s": rates, "blade_gains": [1.0, 1.0, 1.74495]}}
-    row = sweep_row(tmp_path, radar, quad, moving_snr_db=13.2816, seed=1528648000, elevation_deg=8.87026)
+    row = sweep_row(tmp_path, W_BAND_SWEEP, quad, moving_snr_db=13.2816, seed=1528648000, elevation_deg=8.87026)
     assert row["class"] == "drone" and row["aliased"]
     assert (row["n_blades"], row["n_blades_source"]) == (3, "measured")
     assert row["rotation_rate_hz_status"] == row["chopping_freq_hz_status"] == "ok"
@@ -1221,14 +1224,12 @@ def test_a_folded_comb_on_the_prf_grid_is_not_confirmed_by_flash_times_at_it(tmp
     Comb and flash rate are then one stroboscopic repeat, not two readings; the power, resolved within the ramp,
     repeats whole at 180 Hz, three times the comb, which no blade count reconciles with it. Withheld (taking the
     flash rate that agreed with the comb read 60 Hz, a third of the chopping, `ok`)."""
-    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=58.7367e-6, chirp_period_s=73.4209e-6,
-                 sample_rate_hz=2179216.744011836, n_samples=128, n_chirps=13526, n_channels=2)
     pair = {"name": "pair", "type": "multirotor", "elevation_deg": 5.0, "body_rcs_m2": 0.01,
             "motion": {"position_m": [15.0, 0.0, 3.0], "velocity_mps": [0.0, 0.0, 0.0]},
             "rotors": {"count": 2, "blade_profile": "points", "points_per_blade": 16, "root_m": 0.01,
                        "phase_deg": [0, 86], "blade_rcs_m2": 0.003, "blades": 2, "arm_m": 0.25,
                        "blade_length_m": 0.12, "rev_per_s": [90.0, 90.0]}}
-    row = sweep_row(tmp_path, radar, pair, moving_snr_db=15.0, seed=7, n_blades=2)
+    row = sweep_row(tmp_path, W_BAND_SWEEP, pair, moving_snr_db=15.0, seed=7, n_blades=2)
     assert row["class"] == "drone" and row["aliased"]
     assert row["chopping_freq_hz"] is None and row["chopping_freq_hz_status"] == "ambiguous_period"
     assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == "ambiguous_period"
