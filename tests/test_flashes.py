@@ -213,6 +213,17 @@ def test_ramp_parts_with_lags_unread_do_not_take_a_multiple_for_whole(ramp_share
     assert flashes.ramp_repeats_whole(train, multiple * period_chirps, shortest_chirps=2.7) is not True
 
 
+@pytest.mark.parametrize("period_chirps", [8.6, 10.6])
+def test_ramp_parts_of_flashes_held_in_place_are_not_cleared_by_twice_the_sub_period(period_chirps):
+    """Flashes every 8.6 (10.6) chirps without wander fall at five places in the ramp, again and again: their period
+    times 5 is a whole number of chirps. Each part's power weighed by its own median, they repeat at their period
+    with 0.5 of their repeat at 5 periods and at twice it with 0.35 (0.45, 0.35). The lesser of the two would clear
+    the flash period and read 5 periods whole; such a period (no drift of a chirp over the dwell) is read as before
+    the lesser was taken."""
+    train = flashes.ramp_train(_ramp_parts(period_chirps, phase_chirps=0.5), ramp_share=RAMP_SHARE, prf_hz=PRF_HZ)
+    assert flashes.ramp_repeats_whole(train, 5 * period_chirps, shortest_chirps=2.7) is not True
+
+
 def test_ramp_parts_of_noise_tell_nothing():
     train = flashes.ramp_train(_ramp_parts(37.5, amplitude=0.0), ramp_share=RAMP_SHARE, prf_hz=PRF_HZ)
     assert flashes.ramp_repeats_whole(train, 37.5, shortest_chirps=2.7) is None

@@ -352,7 +352,9 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
       repeat counts only where ``2 period / k`` repeats as well, if every lag about that is read
       (:func:`_sub_period_repeat`, read by both tests: two quadrotors of the default sweep, four rotors a phase
       apart, repeated at a fifth and a seventh of their flash period with 0.85 and 0.70 of it, and at twice those
-      lags with 0.35 and 0.06);
+      lags with 0.35 and 0.06), and the period is no whole number of chirps over the dwell (flashes held so at a
+      few places in the ramp, one rotor's, repeated at a fifth and two fifths of their whole 43 chirps with 0.5 and
+      0.35 of it: read whole at 5x their flash period with the lesser);
     * the power's strongest peak past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it
       (else False);
     * the share within a ramp is that of the times ``i period / k`` after the power's flashes that falls within
@@ -380,7 +382,11 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     if not profile.sum() > 0:
         return None
     divisors = range(2, int(period_chirps / shortest_chirps) + 1)
-    subs = [_sub_period_repeat(r, lag, divisor) for divisor in divisors]
+    # flashes whose period is a whole number of chirps over the dwell are held at a few places in the ramp, each part
+    # weighed by its own median: they repeat unalike at its multiples, and the lesser of two repeats clears nothing
+    locked = abs(period_chirps - round(period_chirps)) * len(train.power) * train.slot_chirps / period_chirps <= 1.0
+    subs = [_sub_period_repeat(r, lag, divisor) if not locked else _repeat_at(r, lag / divisor)
+            for divisor in divisors]
     if any(sub >= RAMP_SUB_SHARE * peak for sub in subs):
         return False
     starts = np.arange(len(profile)) * train.slot_chirps  # a flash lies anywhere in its part
