@@ -17,8 +17,8 @@ from mdpipe.process import combs, doppler, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import moving_average, running_median
-from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period, power_period, ramp_readable,
-                                    ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
+from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period, on_chirp_grid, power_period,
+                                    ramp_readable, ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, Octave, flap_glide_share, wing_reach_hz,
@@ -554,11 +554,12 @@ def _folded_comb_by_flash_times(rates_hz, comb_hz, *, n_blades, power, prf_hz, d
     where the comb's spacing or the rate lies on the PRF's grid (:func:`_on_span_grid`): both may then be one
     stroboscopic repeat (two rotors at 90 rev/s, 2 blades, sampled at PRF / 75.7 folded a comb to PRF / 227, and
     their flash times to it or 6x it; the power repeated whole at 3x it, the chopping)."""
-    if power is not None and power.whole:
+    if (power is not None and power.whole) or _on_span_grid(float(np.median(comb_hz)), prf_hz=prf_hz, dwell_s=dwell_s):
         return None
-    confirmed = [c for c in (_folded_comb_at_rate(rate_hz, comb_hz, n_blades=n_blades) for rate_hz in rates_hz
-                             if not _on_span_grid(rate_hz, prf_hz=prf_hz, dwell_s=dwell_s)) if c is not None]
-    if not confirmed or _on_span_grid(float(np.median(comb_hz)), prf_hz=prf_hz, dwell_s=dwell_s):
+    off_grid = [rate_hz for rate_hz in rates_hz if not _on_span_grid(rate_hz, prf_hz=prf_hz, dwell_s=dwell_s)]
+    confirmed = [c for c in (_folded_comb_at_rate(rate_hz, comb_hz, n_blades=n_blades) for rate_hz in off_grid)
+                 if c is not None]
+    if not confirmed:
         return None
     return confirmed[0] if all(np.allclose(c, confirmed[0]) for c in confirmed) else None
 
@@ -968,8 +969,7 @@ def _span_ambiguity(what, frequency_hz, *, prf_hz, dwell_s, power):
 def _on_span_grid(frequency_hz, *, prf_hz, dwell_s):
     """Whether ``frequency_hz`` is the PRF over a whole number M within what the dwell resolves (``1 / dwell_s``: M
     chirps a period, drifting less than a chirp over the dwell), where a whole multiple of it folds onto it."""
-    span_orders = prf_hz / frequency_hz
-    return abs(span_orders - round(span_orders)) * frequency_hz <= 1.0 / dwell_s
+    return on_chirp_grid(prf_hz / frequency_hz, dwell_chirps=dwell_s * prf_hz)
 
 
 def _whole_multiple(found, frequency_hz):

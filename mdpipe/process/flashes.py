@@ -382,11 +382,8 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     if not profile.sum() > 0:
         return None
     divisors = range(2, int(period_chirps / shortest_chirps) + 1)
-    # flashes whose period is a whole number of chirps over the dwell are held at a few places in the ramp, each part
-    # weighed by its own median: they repeat unalike at its multiples, and the lesser of two repeats clears nothing
-    locked = abs(period_chirps - round(period_chirps)) * len(train.power) * train.slot_chirps / period_chirps <= 1.0
-    subs = [_sub_period_repeat(r, lag, divisor) if not locked else _repeat_at(r, lag / divisor)
-            for divisor in divisors]
+    locked = on_chirp_grid(period_chirps, dwell_chirps=len(train.power) * train.slot_chirps)
+    subs = [_sub_period_repeat(r, lag, divisor, locked=locked) for divisor in divisors]
     if any(sub >= RAMP_SUB_SHARE * peak for sub in subs):
         return False
     starts = np.arange(len(profile)) * train.slot_chirps  # a flash lies anywhere in its part
@@ -399,13 +396,22 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     return True
 
 
-def _sub_period_repeat(r, lag, divisor):
+def on_chirp_grid(period_chirps, *, dwell_chirps):
+    """Whether a period of ``period_chirps`` drifts less than a chirp from a whole number of chirps over
+    ``dwell_chirps``: flashes at it are held at the same places in the ramp (and a whole multiple of its rate folds
+    onto it)."""
+    return abs(period_chirps - round(period_chirps)) * dwell_chirps / period_chirps <= 1.0
+
+
+def _sub_period_repeat(r, lag, divisor, *, locked=False):
     """How strongly the autocorrelation ``r`` (of flashes resolved within the ramp) repeats at ``lag / divisor`` as a
     period would (:func:`_repeat_at`, NaN where no lag about it is read): for a divisor of 4 or more, the lesser of
     its repeats there and at twice that, where every lag within +-``AROUND`` of twice it is read, else the repeat at
     ``lag / divisor`` alone (a ramp over 0.55-0.65 of the chirp leaves lags some fractions of a chirp apart unread,
     and the best of the rest nearby may be noise: single trains were read whole at 4-5 times their flash period when
-    the lesser was taken so).
+    the lesser was taken so). A ``locked`` period (:func:`on_chirp_grid`) has the repeat at ``lag / divisor`` alone:
+    its flashes are held at a few places in the ramp, each part weighed by its own median, and repeat unalike at its
+    multiples.
 
     Flashes caught whole in their parts repeat alike at every multiple of their period. A fixed offset d between two
     trains of the period (two rotors a phase apart) repeats at d and at ``lag - d`` only: at a quarter of the period
@@ -413,7 +419,7 @@ def _sub_period_repeat(r, lag, divisor):
     is not told from a period; for even divisors 2d is the period over half the divisor, which a shorter period would
     repeat at too)."""
     sub = _repeat_at(r, lag / divisor)
-    if divisor < 4 or np.isnan(sub):
+    if divisor < 4 or locked or np.isnan(sub):
         return sub
     twice = _read_around(r, 2 * lag / divisor)
     return sub if np.isnan(twice) else min(sub, twice)
