@@ -213,6 +213,33 @@ def test_ramp_parts_with_lags_unread_do_not_take_a_multiple_for_whole(ramp_share
     assert flashes.ramp_repeats_whole(train, multiple * period_chirps, shortest_chirps=2.7) is not True
 
 
+@pytest.mark.parametrize("period_chirps", [7.5, 11.5])
+def test_ramp_parts_read_a_flash_period_unread_at_one_of_its_multiples(period_chirps):
+    """At a ramp of 0.6 of the chirp, a lag of a whole number of chirps and a half pairs a third of the parts: it is
+    unread, and so is every lag within 3 % of it that would hold flashes 7.5 (11.5) chirps apart; the best readable
+    lag nearby is noise, and three periods, 22.5 (34.5) chirps, were read whole. The flashes repeat at twice their
+    period as well, a whole number of chirps, read, where a train every three periods would not: three periods are
+    not whole."""
+    train = flashes.ramp_train(_ramp_parts(period_chirps, phase_chirps=0.1, wander=0.003, ramp_share=0.6),
+                               ramp_share=0.6, prf_hz=PRF_HZ)
+    assert flashes.ramp_repeats_whole(train, 3 * period_chirps, shortest_chirps=2.7) is False
+
+
+def test_ramp_parts_read_a_period_held_on_the_chirps_grid_on_fewer_pairs():
+    """Flashes every 7.5 chirps from 0.05 of a chirp, at a ramp of 0.6: they fall at 0.05 and 0.55 of a chirp by turns,
+    both within the ramp, and 15 chirps is a whole number: the flashes are held at those two places. Lag 7.5 pairs a
+    third of the parts (unread at half), but it pairs those two places, and the flashes repeat there: 15 chirps is
+    not whole (it was, on the noise of the readable lags nearby). A train every 15 chirps held at 0.05 (nothing at 0.55,
+    where it would be seen) is."""
+    def verdict(period_chirps):
+        train = flashes.ramp_train(_ramp_parts(period_chirps, phase_chirps=0.05, ramp_share=0.6), ramp_share=0.6,
+                                   prf_hz=PRF_HZ)
+        return flashes.ramp_repeats_whole(train, 15.0, shortest_chirps=2.7)
+
+    assert verdict(7.5) is False
+    assert verdict(15.0) is True
+
+
 @pytest.mark.parametrize("period_chirps", [8.6, 10.6])
 def test_ramp_parts_of_flashes_held_in_place_are_not_cleared_by_twice_the_sub_period(period_chirps):
     """Flashes every 8.6 (10.6) chirps without wander fall at five places in the ramp, again and again: their period

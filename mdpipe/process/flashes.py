@@ -75,7 +75,8 @@ RAMP_MIN_SHARE = 0.5        # a ramp sampled over less of the chirp is not read 
 RAMP_SETTLE_SHARE = 0.75    # a period / k taken for a period only where it repeats with this share of the period's
                             # (flashes resolved within the ramp repeat alike at their period and its multiples; point
                             # blades' grating flashes a third of a period apart repeated with 0.63 of it)
-RAMP_MIN_PAIRS = 0.5        # a lag is read where it pairs half as many parts as lag 0 or more
+RAMP_MIN_PAIRS = 0.5        # a lag is read where it pairs half as many parts as lag 0 or more ...
+RAMP_LOCKED_PAIRS = 0.2     # ... or this share, for a flash period held at a few places in the ramp
 RAMP_MAX_SLOTS = 2 ** 19    # the grid of parts read at most (a bounded memory: about 160 B a slot, 84 MB)
 SIDE_BINS = 1.5             # the range sides of a target read this many bins below and above its bin ...
 SIDE_SIGMAS = 4.0           # ... their repeats that tell flashes alternating sides stand this many sigmas ...
@@ -283,6 +284,11 @@ class RampTrain:
         however many periods are tried on it."""
         return _masked_autocorrelation(self.power, self.seen, len(self.power) - 1)
 
+    @functools.cached_property
+    def sparse_correlation(self):
+        """:attr:`correlation` read at lags pairing ``RAMP_LOCKED_PAIRS`` of lag 0's parts or more."""
+        return _masked_autocorrelation(self.power, self.seen, len(self.power) - 1, min_pairs=RAMP_LOCKED_PAIRS)
+
 
 def ramp_readable(ramp_share):
     """Whether a ramp sampled over ``ramp_share`` of the chirp period is read in parts (``RAMP_MIN_SHARE``)."""
@@ -318,15 +324,15 @@ def ramp_train(parts, *, ramp_share, prf_hz):
     return RampTrain(np.where(seen, grid - local, 0.0), seen, slot, ramp_share, part)
 
 
-def _masked_autocorrelation(x, seen, max_lag):
+def _masked_autocorrelation(x, seen, max_lag, *, min_pairs=RAMP_MIN_PAIRS):
     """Autocorrelation of ``x`` over the samples ``seen`` (mean removed, each lag averaged over its pairs of seen
-    samples), 1 at lag 0, lags 0 .. max_lag; NaN at lags with under ``RAMP_MIN_PAIRS`` of lag 0's pairs (a lag
+    samples), 1 at lag 0, lags 0 .. max_lag; NaN at lags with under ``min_pairs`` of lag 0's pairs (a lag
     that falls from ramps into the gaps between them more often than not: averaged over few products)."""
     v = np.where(seen, x - np.mean(x[seen]), 0.0)
     size = 1 << int(np.ceil(np.log2(2 * len(x))))
     products = np.fft.irfft(np.abs(np.fft.rfft(v, size)) ** 2, size)[:max_lag + 1]
     pairs = np.round(np.fft.irfft(np.abs(np.fft.rfft(seen.astype(float), size)) ** 2, size)[:max_lag + 1])
-    r = np.where(pairs >= RAMP_MIN_PAIRS * pairs[0], products / np.maximum(pairs, 1.0), np.nan)
+    r = np.where(pairs >= min_pairs * pairs[0], products / np.maximum(pairs, 1.0), np.nan)
     return r / r[0] if r[0] > 0 else np.where(np.isnan(r), np.nan, 0.0)
 
 
@@ -348,13 +354,11 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     * no ``period / k`` repeats with ``RAMP_SUB_SHARE`` of the period's repeat (else False; rotors a phase apart
       repeat in part at many lags, 0.3-0.45 of the period's in a hexarotor), nor with that share of what flashes
       there would show, the share of them that falls within a ramp times the period's repeat, which must stand
-      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise); for k >= 4 a
-      repeat counts only where ``2 period / k`` repeats as well, if every lag about that is read
-      (:func:`_sub_period_repeat`, read by both tests: two quadrotors of the default sweep, four rotors a phase
-      apart, repeated at a fifth and a seventh of their flash period with 0.85 and 0.70 of it, and at twice those
-      lags with 0.35 and 0.06), and the period is no whole number of chirps over the dwell (flashes held so at a
-      few places in the ramp, one rotor's, repeated at a fifth and two fifths of their whole 43 chirps with 0.5 and
-      0.35 of it: read whole at 5x their flash period with the lesser);
+      ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise). The repeat at
+      ``period / k`` is read at its first multiple whose lag pairs enough parts, and for k >= 4 as the lesser of
+      that and a multiple an offset between rotors would not repeat at (:func:`_sub_period_repeat`, read by both
+      tests); a period held on the chirps' grid reads ``period / k`` alone, on fewer pairs
+      (:func:`_locked_sub_period_repeat`);
     * the power's strongest peak past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it
       (else False);
     * the share within a ramp is that of the times ``i period / k`` after the power's flashes that falls within
@@ -383,7 +387,8 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
         return None
     divisors = range(2, int(period_chirps / shortest_chirps) + 1)
     locked = on_chirp_grid(period_chirps, dwell_chirps=len(train.power) * train.slot_chirps)
-    subs = [_sub_period_repeat(r, lag, divisor, locked=locked) for divisor in divisors]
+    subs = [_locked_sub_period_repeat(train.sparse_correlation[:last + 1], lag, divisor) if locked
+            else _sub_period_repeat(r, lag, divisor) for divisor in divisors]
     if any(sub >= RAMP_SUB_SHARE * peak for sub in subs):
         return False
     starts = np.arange(len(profile)) * train.slot_chirps  # a flash lies anywhere in its part
@@ -403,34 +408,50 @@ def on_chirp_grid(period_chirps, *, dwell_chirps):
     return abs(period_chirps - round(period_chirps)) * dwell_chirps / period_chirps <= 1.0
 
 
-def _sub_period_repeat(r, lag, divisor, *, locked=False):
+def _sub_period_repeat(r, lag, divisor):
     """How strongly the autocorrelation ``r`` (of flashes resolved within the ramp) repeats at ``lag / divisor`` as a
-    period would (:func:`_repeat_at`, NaN where no lag about it is read): for a divisor of 4 or more, the lesser of
-    its repeats there and at twice that, where every lag within +-``AROUND`` of twice it is read, else the repeat at
-    ``lag / divisor`` alone (a ramp over 0.55-0.65 of the chirp leaves lags some fractions of a chirp apart unread,
-    and the best of the rest nearby may be noise: single trains were read whole at 4-5 times their flash period when
-    the lesser was taken so). A ``locked`` period (:func:`on_chirp_grid`) has the repeat at ``lag / divisor`` alone:
-    its flashes are held at a few places in the ramp, each part weighed by its own median, and repeat unalike at its
-    multiples.
+    period would: NaN where it cannot be read.
 
-    Flashes caught whole in their parts repeat alike at every multiple of their period. A fixed offset d between two
-    trains of the period (two rotors a phase apart) repeats at d and at ``lag - d`` only: at a quarter of the period
-    or less, d and ``lag - d`` are not 2d (for divisors 2 and 3, 2d is ``lag - d`` or the period itself, and an offset
-    is not told from a period; for even divisors 2d is the period over half the divisor, which a shorter period would
-    repeat at too)."""
-    sub = _repeat_at(r, lag / divisor)
-    if divisor < 4 or locked or np.isnan(sub):
+    Flashes every ``lag / divisor`` repeat at each of its multiples ``j lag / divisor``; flashes every ``lag`` only at
+    the multiples of ``lag`` (``j`` a multiple of ``divisor``). A multiple is read where its own lag pairs enough
+    parts (:func:`_masked_autocorrelation`), at its best within +-``AROUND`` (:func:`_repeat_at`): a ramp over 0.55-0.65
+    of the chirp leaves lags some fractions of a chirp apart unread (at a ramp of 0.6 and 7.5 chirps a flash, every
+    other flash falls between ramps), and the best readable lag near an unread one is noise: single trains were read
+    whole at 2-5 times their flash period (178 of 1600 at ramps of 0.55-0.7) where that noise stood for the repeat
+    at the flash period. So the first multiple whose lag is read, up to ``WHOLE_SPAN`` periods, stands for the
+    sub-period (``lag / divisor`` itself wherever the ramp covers 0.75 of the chirp or more).
+
+    For a divisor of 4 or more it counts as the lesser of that and the next multiple read that an offset could not
+    repeat at: a fixed offset d between two trains of the period (two rotors a phase apart) repeats at d and
+    ``lag - d`` and their sums with multiples of ``lag``, so at ``j lag / divisor`` with ``j`` = +-d modulo the divisor
+    only (two quadrotors of the default sweep, four rotors a phase apart, repeated at a fifth and a seventh of their
+    flash period with 0.85 and 0.70 of it, and at twice those lags with 0.35 and 0.06). For divisors 2 and 3 every
+    multiple is +-1 modulo the divisor: an offset is not told from a period there.
+
+    A locked period: :func:`_locked_sub_period_repeat`."""
+    def read(j):
+        return np.isfinite(r[int(round(j * lag / divisor))])
+
+    multiples = [j for j in range(1, int(WHOLE_SPAN * divisor) + 1)
+                 if j % divisor and j * lag / divisor + 2 < len(r) and read(j)]
+    if not multiples:
+        return np.nan
+    first = multiples[0]
+    sub = _repeat_at(r, first * lag / divisor)
+    if divisor < 4:
         return sub
-    twice = _read_around(r, 2 * lag / divisor)
-    return sub if np.isnan(twice) else min(sub, twice)
+    other = next((j for j in multiples if (j - first) % divisor and (j + first) % divisor), None)
+    return sub if other is None else min(sub, _repeat_at(r, other * lag / divisor))
 
 
-def _read_around(r, lag):
-    """The autocorrelation ``r`` at its best within +-``AROUND`` (and a slot) of ``lag`` slots where every one of
-    those lags is read, else NaN (flashes there could go unseen)."""
-    first, stop = _around(lag)
-    window = r[first:stop]
-    return float(np.max(window)) if len(window) and np.isfinite(window).all() else np.nan
+def _locked_sub_period_repeat(r, lag, divisor):
+    """:func:`_sub_period_repeat` for a period held on the chirps' grid (:func:`on_chirp_grid`), ``r`` the
+    autocorrelation read on fewer pairs (:attr:`RampTrain.sparse_correlation`): the repeat at ``lag / divisor`` alone,
+    NaN where that lag is unread. Its flashes are held at a few places in the ramp, each part weighed by its own median,
+    and repeat unalike at its multiples. Held in place, they pair at a lag only where both places lie in the ramp,
+    whatever share of the other parts pair there: the lag is read on fewer pairs, and where the places it would pair
+    them with lie between the ramps, the share seen (:func:`ramp_repeats_whole`) says so."""
+    return _repeat_at(r, lag / divisor) if np.isfinite(r[int(round(lag / divisor))]) else np.nan
 
 
 def ramp_repeat(train, period_chirps):
