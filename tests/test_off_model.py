@@ -1233,3 +1233,21 @@ def test_a_folded_comb_on_the_prf_grid_is_not_confirmed_by_flash_times_at_it(tmp
     assert row["class"] == "drone" and row["aliased"]
     assert row["chopping_freq_hz"] is None and row["chopping_freq_hz_status"] == "ambiguous_period"
     assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == "ambiguous_period"
+
+
+def test_a_goose_over_under_two_beats_is_given_no_wingbeat_at_a_harmonic(tmp_path):
+    """A goose of the held-out bird sweep (clutter left out) at 77 GHz beating 2.23 Hz over a 0.58 s dwell: 1.3 beats,
+    too few for a wingbeat. The rows lit in a quarter of its frames repeat with the beat, past the lags searched (half
+    the record), and ripple on that slope every 0.14 s, the stroke's harmonics: the ripple's 'repeats' at 2 and 3 times
+    0.14 s were the window's ends on the rising slope, no peaks, and a wingbeat of 7.1 Hz was given `ok`. A repeat is
+    a peak: no wingbeat is given, and with neither flashes nor a wingbeat the goose is `none` (as the birds of the
+    held-out sweep seen over under two beats)."""
+    radar = dict(f_start_hz=76.5e9, f_stop_hz=76.6e9, ramp_up_s=41.8368e-6, chirp_period_s=52.2961e-6,
+                 sample_rate_hz=3059507.4223649995, n_samples=128, n_chirps=11021, n_channels=1)
+    goose = {"name": "goose", "type": "bird", "a1_deg": 46.2774, "a2_deg": 38.1098,
+             "wingbeat_drift_fraction": 0.0179426, "wing_roughness": 0.165833, "wingbeat_hz": 2.23014,
+             "upper_arm_m": 0.322468, "forearm_m": 0.373275, "body_rcs_m2": 0.0306747, "wing_rcs_m2": 0.025487,
+             "motion": {"position_m": [60.8864, -14.6817, 12.5754], "velocity_mps": [6.98717, 7.89948, 0.0]}}
+    row = sweep_row(tmp_path, radar, goose, moving_snr_db=25.8302, seed=1902172552)
+    assert row["wingbeat_freq_hz"] is None and row["wingbeat_freq_hz_status"] == "no_wingbeat"
+    assert row["class"] == "none"

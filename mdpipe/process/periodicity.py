@@ -70,9 +70,11 @@ def _parabolic_peak(r, index):
     return index + float(parabolic_offset(r[index - 1], r[index], r[index + 1]))
 
 
-def _repeats(prominence, lag, limit, untestable, share=REPEAT_SHARE, max_order=3):
-    """The peak at ``lag`` recurs at 2 lag (and up to ``max_order`` lag below ``limit``) with ``share`` of its
-    prominence.
+def _repeats(r, prominence, lag, limit, untestable, share=REPEAT_SHARE, max_order=3):
+    """The peak at ``lag`` of ``r`` recurs at 2 lag (and up to ``max_order`` lag below ``limit``) with ``share`` of its
+    prominence, and as a peak: a local maximum of ``r`` within a lag of the window, not a slope its end stops on (a
+    goose seen over 1.3 beats: its rows' autocorrelation rising towards the beat past the lags searched, a ripple on
+    it every 0.14 s, the stroke's harmonics, read a 7.1 Hz wingbeat on the slope at 2 and 3 times that).
 
     ``untestable``: what to answer when 2 lag lies beyond ``limit`` (the record holds under three periods).
     """
@@ -82,6 +84,8 @@ def _repeats(prominence, lag, limit, untestable, share=REPEAT_SHARE, max_order=3
         half = max(2, int(0.02 * lag))  # the coarse lag is good to a sample: an offset peak nearby must not count
         if prominence[k * lag - half:k * lag + half + 1].max() < share * prominence[lag]:
             return False
+        if not len(local_maxima(r[k * lag - half - 2:k * lag + half + 3])):
+            return False  # no peak within half + 1 of k lag (local_maxima reads interior samples): a slope
     return True
 
 
@@ -126,7 +130,7 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     heights = prominence[peaks]
     limit = int(repeat_share * len(r))
     first = next((p for p in peaks[heights >= FUNDAMENTAL_SHARE * heights.max()]
-                  if _repeats(prominence, p, limit, untestable=repeat_share > 0.5, share=recur_share,
+                  if _repeats(r, prominence, p, limit, untestable=repeat_share > 0.5, share=recur_share,
                                    max_order=max_order)), None)
     if first is None:
         return None
