@@ -18,6 +18,7 @@ from mdpipe.process.filters import local_maxima, parabolic_offset, running_min
 
 FUNDAMENTAL_SHARE = 0.8
 REPEAT_SHARE = 0.5
+PEAK_SPREAD = 0.03  # a repeat's peak lies within this share of k T: rotors 1-4 % apart split it about k T
 MAX_REPEATS = 64
 
 
@@ -72,9 +73,11 @@ def _parabolic_peak(r, index):
 
 def _repeats(r, prominence, lag, limit, untestable, share=REPEAT_SHARE, max_order=3):
     """The peak at ``lag`` of ``r`` recurs at 2 lag (and up to ``max_order`` lag below ``limit``) with ``share`` of its
-    prominence, and as a peak: a local maximum of ``r`` within a lag of the window, not a slope its end stops on (a
-    goose seen over 1.3 beats: its rows' autocorrelation rising towards the beat past the lags searched, a ripple on
-    it every 0.14 s, the stroke's harmonics, read a 7.1 Hz wingbeat on the slope at 2 and 3 times that).
+    prominence, and as a peak: a local maximum of ``r`` within ``PEAK_SPREAD`` of k lag (and a lag past the window),
+    not a slope the window's end stops on (a goose seen over 1.3 beats: its rows' autocorrelation rising towards the
+    beat past the lags searched, a ripple on it every 0.14 s, the stroke's harmonics, read a 7.1 Hz wingbeat on the
+    slope at 2 and 3 times that). Four rotors 1-4 % apart split their repeat at 3 T into two peaks 2 % either side,
+    a dip at 3 T itself.
 
     ``untestable``: what to answer when 2 lag lies beyond ``limit`` (the record holds under three periods).
     """
@@ -84,8 +87,9 @@ def _repeats(r, prominence, lag, limit, untestable, share=REPEAT_SHARE, max_orde
         half = max(2, int(0.02 * lag))  # the coarse lag is good to a sample: an offset peak nearby must not count
         if prominence[k * lag - half:k * lag + half + 1].max() < share * prominence[lag]:
             return False
-        if not len(local_maxima(r[k * lag - half - 2:k * lag + half + 3])):
-            return False  # no peak within half + 1 of k lag (local_maxima reads interior samples): a slope
+        reach = max(half + 1, int(np.ceil(PEAK_SPREAD * k * lag)))  # local_maxima reads interior samples
+        if not len(local_maxima(r[max(k * lag - reach - 1, 0):k * lag + reach + 2])):
+            return False  # no peak near k lag: a slope
     return True
 
 
