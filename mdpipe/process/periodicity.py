@@ -73,7 +73,7 @@ def _parabolic_peak(r, index):
 
 def _repeats(r, prominence, lag, limit, untestable, share=REPEAT_SHARE, max_order=3):
     """The peak at ``lag`` of ``r`` recurs at 2 lag (and up to ``max_order`` lag below ``limit``) with ``share`` of its
-    prominence, and as a peak: a local maximum of ``r`` within ``PEAK_SPREAD`` of k lag (and a lag past the window),
+    prominence, and as a peak: a local maximum of ``r`` within ``PEAK_SPREAD`` of k lag (a lag past the window at least),
     not a slope the window's end stops on (a goose seen over 1.3 beats: its rows' autocorrelation rising towards the
     beat past the lags searched, a ripple on it every 0.14 s, the stroke's harmonics, read a 7.1 Hz wingbeat on the
     slope at 2 and 3 times that). Four rotors 1-4 % apart split their repeat at 3 T into two peaks 2 % either side,
