@@ -624,7 +624,9 @@ def paper(out_dir, configs_dir):
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=1, show_default=True, help="Worker processes.")
 @click.option("--limit", type=click.IntRange(min=1), help="Run only the first LIMIT scenes of the sweep.")
 @click.option("--keep-captures", is_flag=True, help="Keep the simulated captures in OUT/captures/.")
-def evaluate(sweep_path, out_dir, jobs, limit, keep_captures):
+@click.option("--seed", type=click.IntRange(min=0), help="Draw with this seed instead of the sweep's: a fresh draw "
+              "of the same distributions, scenes no estimator was tuned on.")
+def evaluate(sweep_path, out_dir, jobs, limit, keep_captures, seed):
     """Draw the scenes of SWEEP, simulate, process and score them against their truth.
 
     Writes OUT/scenes/<scene>.yaml (each rerunnable with mdpipe simulate + process), OUT/scenes.csv
@@ -636,10 +638,10 @@ def evaluate(sweep_path, out_dir, jobs, limit, keep_captures):
     from mdpipe.report.tables import atomic_write
 
     start = time.perf_counter()
-    draws = sweep.draw_scenes(sweep.load_sweep(sweep_path), limit=limit)
+    draws = sweep.draw_scenes(sweep.load_sweep(sweep_path), limit=limit, seed=seed)
     out_dir.mkdir(parents=True, exist_ok=True)
     frame = summary.records_frame(run.run_all(draws, out_dir, jobs=jobs, keep_captures=keep_captures))
-    text = summary.report(frame, title=f"mdpipe evaluate {sweep_path}",
+    text = summary.report(frame, title=f"mdpipe evaluate {sweep_path}" + ("" if seed is None else f" --seed {seed}"),
                           wall_s=time.perf_counter() - start, jobs=jobs)
     atomic_write(out_dir / "scenes.csv", lambda tmp: frame.to_csv(tmp, index=False))
     atomic_write(out_dir / "summary.md", lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))

@@ -185,6 +185,9 @@ def test_sweep_draws_are_seeded_per_scene_and_valid():
     draws = sweep.draw_scenes(spec)
     assert len(draws) == 6 and sweep.draw_scene(spec, 4) == draws[4]
     assert sweep.draw_scenes(spec, limit=2) == draws[:2]
+    fresh = sweep.draw_scenes(spec, seed=777)
+    assert fresh == sweep.draw_scenes({**spec, "seed": 777}) and spec["seed"] != 777
+    assert all(a.scene["seed"] != b.scene["seed"] for a, b in zip(fresh, draws))  # other scenes
     for draw in draws:
         scene = scene_from_mapping(draw.scene)
         assert scene.radar.params.prf_hz == pytest.approx(20000.0 if draw.band == "K" else 4000.0)

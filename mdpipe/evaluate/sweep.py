@@ -308,7 +308,10 @@ def load_sweep(path):
     return validate_sweep(load_scene_mapping(path), path)
 
 
-def draw_scenes(sweep, *, limit=None):
-    """The first ``min(n_scenes, limit)`` scenes of ``sweep``, as :class:`Draw` objects."""
+def draw_scenes(sweep, *, limit=None, seed=None):
+    """The first ``min(n_scenes, limit)`` scenes of ``sweep``, as :class:`Draw` objects; drawn with ``seed`` instead
+    of the sweep's where given (a fresh draw of the same distributions: scenes no estimator was tuned on)."""
+    if seed is not None:
+        sweep = {**sweep, "seed": int(seed)}
     n = sweep["n_scenes"] if limit is None else min(sweep["n_scenes"], limit)
     return [draw_scene(sweep, i) for i in range(n)]
