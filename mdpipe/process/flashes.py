@@ -279,15 +279,20 @@ class RampTrain:
     part: np.ndarray  # each slot's part of the ramp (0 .. S - 1), -1 between ramps
 
     @functools.cached_property
+    def _lag_sums(self):
+        """The power's products and the pairs of seen slots at every lag (:func:`_lag_sums`): one pair of FFTs
+        however many periods are tried on it, and for both readings below."""
+        return _lag_sums(self.power, self.seen, len(self.power) - 1)
+
+    @functools.cached_property
     def correlation(self):
-        """The power's autocorrelation over the seen slots, every lag (:func:`_masked_autocorrelation`): one FFT
-        however many periods are tried on it."""
-        return _masked_autocorrelation(self.power, self.seen, len(self.power) - 1)
+        """The power's autocorrelation over the seen slots, every lag (:func:`_masked_autocorrelation`)."""
+        return _masked_autocorrelation(*self._lag_sums)
 
     @functools.cached_property
     def sparse_correlation(self):
         """:attr:`correlation` read at lags pairing ``RAMP_LOCKED_PAIRS`` of lag 0's parts or more."""
-        return _masked_autocorrelation(self.power, self.seen, len(self.power) - 1, min_pairs=RAMP_LOCKED_PAIRS)
+        return _masked_autocorrelation(*self._lag_sums, min_pairs=RAMP_LOCKED_PAIRS)
 
 
 def ramp_readable(ramp_share):
@@ -324,14 +329,20 @@ def ramp_train(parts, *, ramp_share, prf_hz):
     return RampTrain(np.where(seen, grid - local, 0.0), seen, slot, ramp_share, part)
 
 
-def _masked_autocorrelation(x, seen, max_lag, *, min_pairs=RAMP_MIN_PAIRS):
-    """Autocorrelation of ``x`` over the samples ``seen`` (mean removed, each lag averaged over its pairs of seen
-    samples), 1 at lag 0, lags 0 .. max_lag; NaN at lags with under ``min_pairs`` of lag 0's pairs (a lag
-    that falls from ramps into the gaps between them more often than not: averaged over few products)."""
+def _lag_sums(x, seen, max_lag):
+    """The sums of products of ``x`` (mean removed) over the pairs of samples ``seen`` at lags 0 .. max_lag, and the
+    number of those pairs."""
     v = np.where(seen, x - np.mean(x[seen]), 0.0)
     size = 1 << int(np.ceil(np.log2(2 * len(x))))
     products = np.fft.irfft(np.abs(np.fft.rfft(v, size)) ** 2, size)[:max_lag + 1]
     pairs = np.round(np.fft.irfft(np.abs(np.fft.rfft(seen.astype(float), size)) ** 2, size)[:max_lag + 1])
+    return products, pairs
+
+
+def _masked_autocorrelation(products, pairs, *, min_pairs=RAMP_MIN_PAIRS):
+    """Autocorrelation from a signal's lag sums (:func:`_lag_sums`: each lag averaged over its pairs of seen samples),
+    1 at lag 0; NaN at lags with under ``min_pairs`` of lag 0's pairs (a lag that falls from ramps into the gaps
+    between them more often than not: averaged over few products)."""
     r = np.where(pairs >= min_pairs * pairs[0], products / np.maximum(pairs, 1.0), np.nan)
     return r / r[0] if r[0] > 0 else np.where(np.isnan(r), np.nan, 0.0)
 
@@ -357,8 +368,7 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
       ``RAMP_VISIBLE_SIGMAS`` sigmas (else None: flashes there could go unseen, or under the noise). The repeat at
       ``period / k`` is read at its first multiple whose lag pairs enough parts, and for k >= 4 as the lesser of
       that and a multiple an offset between rotors would not repeat at (:func:`_sub_period_repeat`, read by both
-      tests); a period held on the chirps' grid reads ``period / k`` alone, on fewer pairs
-      (:func:`_locked_sub_period_repeat`);
+      tests); a period held on the chirps' grid reads ``period / k`` alone, on fewer pairs;
     * the power's strongest peak past the period, up to ``WHOLE_SPAN`` periods, lies at a whole multiple of it
       (else False);
     * the share within a ramp is that of the times ``i period / k`` after the power's flashes that falls within
@@ -387,8 +397,8 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
         return None
     divisors = range(2, int(period_chirps / shortest_chirps) + 1)
     locked = on_chirp_grid(period_chirps, dwell_chirps=len(train.power) * train.slot_chirps)
-    subs = [_locked_sub_period_repeat(train.sparse_correlation[:last + 1], lag, divisor) if locked
-            else _sub_period_repeat(r, lag, divisor) for divisor in divisors]
+    sub_r = train.sparse_correlation[:last + 1] if locked else r  # a locked period's lags read on fewer pairs
+    subs = [_sub_period_repeat(sub_r, lag, divisor, locked=locked) for divisor in divisors]
     if any(sub >= RAMP_SUB_SHARE * peak for sub in subs):
         return False
     starts = np.arange(len(profile)) * train.slot_chirps  # a flash lies anywhere in its part
@@ -408,7 +418,7 @@ def on_chirp_grid(period_chirps, *, dwell_chirps):
     return abs(period_chirps - round(period_chirps)) * dwell_chirps / period_chirps <= 1.0
 
 
-def _sub_period_repeat(r, lag, divisor):
+def _sub_period_repeat(r, lag, divisor, *, locked=False):
     """How strongly the autocorrelation ``r`` (of flashes resolved within the ramp) repeats at ``lag / divisor`` as a
     period would: NaN where it cannot be read.
 
@@ -428,10 +438,17 @@ def _sub_period_repeat(r, lag, divisor):
     flash period with 0.85 and 0.70 of it, and at twice those lags with 0.35 and 0.06). For divisors 2 and 3 every
     multiple is +-1 modulo the divisor: an offset is not told from a period there.
 
-    A locked period: :func:`_locked_sub_period_repeat`."""
+    A ``locked`` period (:func:`on_chirp_grid`), ``r`` then read on fewer pairs (:attr:`RampTrain.sparse_correlation`),
+    has the repeat at ``lag / divisor`` alone, NaN where that lag is unread. Its flashes are held at a few places in the
+    ramp, each part weighed by its own median, and repeat unalike at its multiples. Held in place, they pair at a lag
+    only where both places lie in the ramp, whatever share of the other parts pair there: the lag is read on fewer
+    pairs, and where the places it would pair them with lie between the ramps, the share seen
+    (:func:`ramp_repeats_whole`) says so."""
     def read(j):
         return np.isfinite(r[int(round(j * lag / divisor))])
 
+    if locked:
+        return _repeat_at(r, lag / divisor) if read(1) else np.nan
     multiples = [j for j in range(1, int(WHOLE_SPAN * divisor) + 1)
                  if j % divisor and j * lag / divisor + 2 < len(r) and read(j)]
     if not multiples:
@@ -444,16 +461,6 @@ def _sub_period_repeat(r, lag, divisor):
     return sub if other is None else min(sub, _repeat_at(r, other * lag / divisor))
 
 
-def _locked_sub_period_repeat(r, lag, divisor):
-    """:func:`_sub_period_repeat` for a period held on the chirps' grid (:func:`on_chirp_grid`), ``r`` the
-    autocorrelation read on fewer pairs (:attr:`RampTrain.sparse_correlation`): the repeat at ``lag / divisor`` alone,
-    NaN where that lag is unread. Its flashes are held at a few places in the ramp, each part weighed by its own median,
-    and repeat unalike at its multiples. Held in place, they pair at a lag only where both places lie in the ramp,
-    whatever share of the other parts pair there: the lag is read on fewer pairs, and where the places it would pair
-    them with lie between the ramps, the share seen (:func:`ramp_repeats_whole`) says so."""
-    return _repeat_at(r, lag / divisor) if np.isfinite(r[int(round(lag / divisor))]) else np.nan
-
-
 def ramp_repeat(train, period_chirps):
     """How strongly the echo resolved within the ramp (``train``) repeats after ``period_chirps``: its power's
     autocorrelation at its best within +-``AROUND`` (NaN where no lag there pairs enough parts)."""
@@ -463,16 +470,11 @@ def ramp_repeat(train, period_chirps):
     return _repeat_at(train.correlation, lag)
 
 
-def _around(lag):
-    """The slots ``[first, stop)`` within +-``AROUND`` (and a slot) of ``lag`` slots."""
-    return max(int(np.floor(lag * (1 - AROUND))) - 1, 1), int(np.ceil(lag * (1 + AROUND))) + 2
-
-
 def _best_lag(r, lag):
     """The lag at which the autocorrelation ``r`` is best within +-``AROUND`` (and a slot) of ``lag`` slots, None
     where none of those lags is read."""
-    first, stop = _around(lag)
-    window = r[first:stop]
+    first = max(int(np.floor(lag * (1 - AROUND))) - 1, 1)
+    window = r[first:int(np.ceil(lag * (1 + AROUND))) + 2]
     return first + int(np.nanargmax(window)) if np.isfinite(window).any() else None
 
 
