@@ -200,7 +200,7 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
         masked[np.clip(peak + offset, 0, len(spec.f_hz) - 1), np.arange(power.shape[1])] = 0.0
     ratio_db = 10 * np.log10(power.max(axis=0) / np.maximum(masked.max(axis=0), np.finfo(float).tiny))
     prominence = float(np.median(ratio_db))
-    peaks = doppler.frame_peaks_hz(spec, prf_hz=prf_hz)
+    peaks = one_branch_hz(doppler.frame_peaks_hz(spec, prf_hz=prf_hz), prf_hz=prf_hz, frames=BODY_TRACK_FRAMES)
 
     def peaks_median(frames):  # the peaks' running median over an odd number of frames, at most the dwell's
         return running_median(peaks, min(frames, len(peaks)) | 1)
@@ -221,8 +221,8 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     times_s = np.arange(len(signal)) / prf_hz
     doppler_track = np.interp(times_s, spec.t_s, frame_track)
     rate_track = peaks_median(int(round(BODY_RATE_MEDIAN_S / spec.hop_s)))
-    velocity = float(range_rate_from_doppler_mps(float(np.mean(np.interp(times_s, spec.t_s, rate_track))),
-                                                 wavelength_m=wavelength_m))
+    mean_hz = doppler.fold_hz(np.mean(np.interp(times_s, spec.t_s, rate_track)), prf_hz=prf_hz)
+    velocity = float(range_rate_from_doppler_mps(float(mean_hz), wavelength_m=wavelength_m))
     unfolded = dealias_velocity(velocity, span_mps=wavelength_m * prf_hz / 2, track=track)
     if kept and not _range_follows(unfolded.value, track):
         rate = track.range_rate_mps()[0]
@@ -232,6 +232,21 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
                                          f"track {rate:.3g} m/s, bins of {track.bin_m:.3g} m)"), signal)
     return BodyMotion(doppler_track, unfolded, doppler.demodulate(
         signal - static_line(signal, doppler_track, prf_hz=prf_hz), doppler_track, prf_hz=prf_hz))
+
+
+def one_branch_hz(peaks_hz, *, prf_hz, frames):
+    """Frame peaks ``peaks_hz`` (each folded into the span) on one continuous branch: each the alias of itself
+    nearest the running median over ``frames`` frames, itself unwrapped (steps of ``prf_hz`` taken out).
+
+    A body whose Doppler crosses the span's edge during the dwell (a swift at 94 GHz and a PRF of 2.6 kHz: its
+    range rate sweeping -4.8 to +8 m/s across a span of 4.1 m/s) folds to the other edge there; the folded track's
+    mean is no mean range rate (the swift read 6.04 m/s for 1.96), its running median no track, and a track
+    interpolated across the jump sweeps the whole span. An outlier frame (a rotor line outshining the body) keeps
+    its alias nearest the track: unwrapped itself, two outliers a span apart would step the rest of the track
+    by a span.
+    """
+    track = np.unwrap(running_median(peaks_hz, min(frames, len(peaks_hz)) | 1), period=prf_hz)
+    return track + doppler.fold_hz(peaks_hz - track, prf_hz=prf_hz)
 
 
 def _range_follows(velocity_mps, track):
