@@ -58,6 +58,7 @@ MIN_WING_ROWS = 3             # ... in this many Doppler rows at least (one or t
 BLURRED_FRAMES = 4            # a period under this many frames is read again in frames of a quarter of it ...
 BLUR_AGREEMENT = 0.15         # ... where it, or half of it, is found within this share (else withheld)
 BURST_AGREEMENT = 0.05        # a whole-record period is measured again within the bursts where found within this
+CYCLE_SHARE = 0.9             # a whole-record period this share of the flap-glide cycle or longer is no wingbeat
 GLIDE_DROP_DB = 10.0          # a glide: the wing rows this far under their level while flapping ...
 BODY_STEADY_DB = 3.0          # ... while the body line holds within this of its own
 BODY_BINS = 2                 # the body line: the Doppler bins this close to 0 Hz (the body demodulated there),
@@ -451,11 +452,11 @@ def _looks(frames):
         if found.repeats >= 2 and found.strength >= MIN_PERIODICITY:
             if len(frames.lit_rows(row_percentile, wings_only=True)) < MIN_WING_ROWS:
                 found = _stroke_signed(found, frames, SIGNAL_ROW_PERCENTILES[index + 1:])
-            return _within_bursts(found, frames)
+            return _within_cycle(found, frames)
         if found.repeats == 1 and found.strength >= MIN_SINGLE_PERIODICITY and single is None:
             single = found
     if single is not None:
-        return _within_bursts(single, frames)
+        return _within_cycle(single, frames)
     return _gated_period(frames)
 
 
@@ -494,6 +495,39 @@ def _stroke_signed(found, frames, wider_percentiles):
 def _gated(frames):
     return gated_pattern_autocorrelation(frames.spec, noise_level=frames.noise_level, frame_rate=frames.frame_rate,
                                          lit_db=frames.lit_db)
+
+
+def burst_cycle_s(frames):
+    """The cycle (s) of a bird's flap-glide bursts in ``frames``: the median time between its switches from gliding
+    to flapping, and between those from flapping to gliding (the record's own start and end are none); None where it
+    does not glide (:func:`flapping_frames` on the rows :func:`gated_pattern_autocorrelation` reads, not flapping in
+    ``MIN_GLIDE_SHARE`` of the dwell at least) or shows no two switches of one kind."""
+    rows = _lit_rows(frames.spec, frames.noise_level, SIGNAL_ROW_PERCENTILES[-1], lit_db=frames.lit_db)
+    if len(rows) < MIN_WING_ROWS:
+        return None
+    flapping = flapping_frames(rows, noise_level=frames.noise_level, frame_rate=frames.frame_rate,
+                               lit_db=frames.lit_db)
+    if not flapping.any() or flapping.mean() > 1 - MIN_GLIDE_SHARE:
+        return None
+    runs = bursts(flapping)
+    starts, stops = runs[:, 0][runs[:, 0] > 0], runs[:, 1][runs[:, 1] < len(flapping)]
+    gaps = np.concatenate([np.diff(starts), np.diff(stops)])
+    return float(np.median(gaps)) / frames.frame_rate if len(gaps) else None
+
+
+def _within_cycle(found, frames):
+    """``found``, a period seen in the whole record (measured again within the bursts: :func:`_within_bursts`), or,
+    where it spans ``CYCLE_SHARE`` of the cycle of a bird's flap-glide bursts or more (:func:`burst_cycle_s`), the
+    period read within the bursts (:func:`_gated_period`), or None.
+
+    A burst shorter than the period holds less than one beat: such a period is the cycle of flapping and gliding,
+    which repeats whole, not the wingbeat (a crow flapping 1.04 s and gliding 0.89 s read 0.522 Hz for 4.19 Hz; a
+    goose flapping 0.77 s and gliding 0.36 s, 0.885 Hz for 2.66 Hz: the default sweep at seed 4321).
+    """
+    cycle_s = burst_cycle_s(frames)
+    if cycle_s is not None and found.period_s >= CYCLE_SHARE * cycle_s:
+        return _gated_period(frames)
+    return _within_bursts(found, frames)
 
 
 def _within_bursts(found, frames):
