@@ -14,6 +14,8 @@ import numpy as np
 
 from mdpipe.errors import ParameterError
 
+SPEED_OF_SOUND_MPS = 343.0  # no blade tip of a drone's rotor moves faster
+
 
 def blade_angles_rad(t_s, *, rotation_rate_hz, n_blades, phase0_rad=0.0):
     """Angles of the ``n_blades`` blades at times ``t_s``.

@@ -8,7 +8,7 @@ import numpy as np
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
-from mdpipe.process import flashes, interference, memory, ranging, saturation, selection
+from mdpipe.process import flashes, images, interference, memory, ranging, saturation, selection
 from mdpipe.process.classify import classify
 from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analyse_target
 
@@ -80,7 +80,8 @@ def target_signals(reader, stats, tracks, process):
     every = max(1, stats.n_chirps // TRACK_POINTS)
     t_s = np.arange(0, stats.n_chirps, every) / params.prf_hz
     return [(RangeTrack(t_s=t_s, range_m=ranging.bin_range_m(track_bins[::every], params, process.zero_pad),
-                        bin_m=params.range_bin_m), signals[:, i], gain, weight)
+                        bin_m=params.range_bin_m, coupling_m_per_hz=params.sampled_duration_s * params.range_bin_m),
+             signals[:, i], gain, weight)
             for i, (track_bins, gain, weight) in enumerate(zip(bins, gains, weights))]
 
 
@@ -93,6 +94,21 @@ def flash_views(reader, track_bins, weight, process):
                                                        side_bins=flashes.SIDE_BINS * process.zero_pad,
                                                        window=process.range_window, zero_pad=process.zero_pad,
                                                        chunk_chirps=process.chunk_chirps))
+
+
+def without_images(detections, targets, rows, analyses, params):
+    """The four per-target lists less the targets that are a stronger drone's range-Doppler image
+    (:func:`mdpipe.process.images.image_owners`), noted on that drone's row; the rows renumbered."""
+    reach_m = images.image_reach_m(params)
+    owners = images.image_owners(rows, reach_m=reach_m)
+    for image, owner in enumerate(owners):
+        if owner is not None:
+            rows[owner]["notes"] += "; " + images.image_note(rows[image], reach_m=reach_m)
+    kept = [i for i, owner in enumerate(owners) if owner is None]
+    rows = [rows[i] for i in kept]
+    for index, row in enumerate(rows):
+        row["target"] = index
+    return [detections[i] for i in kept], [targets[i] for i in kept], rows, [analyses[i] for i in kept]
 
 
 def clipped_share(reader, stats):
@@ -189,6 +205,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + capture_notes)
             rows.append(row)
             analyses.append(analysis)
+        detections, targets, rows, analyses = without_images(detections, targets, rows, analyses, params)
         levels_db = [detection.snr_db if row["snr_db"] is None else row["snr_db"]
                      for detection, row in zip(detections, rows)]
         rows = saturation.saturated_rows(rows, levels_db, clipped, capture_notes)

@@ -21,7 +21,6 @@ from mdpipe.simulate.schema import NON_NEGATIVE, POSITIVE, Vec3, check
 from mdpipe.simulate.targets.common import Echo, Motion, amplitude_bound_v, body_track, carrier  # noqa: F401
 
 MAX_BLADE_LENGTH_M = 2.0
-SPEED_OF_SOUND_MPS = 343.0
 MAX_RATE_WANDER_FRACTION = 0.3
 
 
@@ -69,10 +68,10 @@ class Rotors:
             raise ParameterError(f"blade_length_m={self.blade_length_m} m is longer than any drone blade "
                                  f"(at most {MAX_BLADE_LENGTH_M} m); did you mean {self.blade_length_m / 100:g} m?")
         tip_speed = 2.0 * np.pi * float(np.max(np.abs(self.rev_per_s))) * self.blade_length_m
-        if tip_speed > SPEED_OF_SOUND_MPS:
+        if tip_speed > rotor.SPEED_OF_SOUND_MPS:
             raise ParameterError(f"blade tips would move at 2 pi x {np.max(np.abs(self.rev_per_s)):g} rev/s x "
                                  f"{self.blade_length_m:g} m = {tip_speed:.0f} m/s, faster than sound "
-                                 f"({SPEED_OF_SOUND_MPS:.0f} m/s); check rev_per_s and blade_length_m")
+                                 f"({rotor.SPEED_OF_SOUND_MPS:.0f} m/s); check rev_per_s and blade_length_m")
 
     @property
     def profile(self):
