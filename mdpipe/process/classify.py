@@ -13,7 +13,8 @@ m/s. So one rule serves X band and 94 GHz:
   centre when no body line stands out; for an aliased band, the span's half-width, which the wings' spread
   exceeds); or, within the same bounds, wings lit in bursts and dark between them while the body line holds
   (``flapping_share``: glides between bursts too short for a wingbeat, or the turns of a slow stroke; rotors never
-  stop);
+  stop); or, for a body that flies, within the same bounds, wings whose reach swings over the dwell as a stroke's
+  does (``wing_stroke_swing``: too few beats for a wingbeat; a rotor's tips hold their speed);
 * none: nothing moving above the noise, or neither signature (a branch swaying in the wind repeats
   too, but its micro-Doppler stays below ``MIN_WING_SPREAD_MPS`` and it does not fly).
 """
@@ -42,4 +43,7 @@ def classify(row, *, detected):
     if row.get("flapping_share") is not None:  # likewise
         return "bird", (f"wing micro-Doppler in bursts over {row['flapping_share']:.0%} of the dwell, dark between "
                         f"them while the body line holds, half-width {spread or 0:.1f} m/s")
+    if row.get("wing_stroke_swing") is not None:  # likewise, and only for a body that flies
+        return "bird", (f"wings whose reach swings {row['wing_stroke_swing']:.0%} of its greatest over the dwell (a "
+                        f"stroke; too few beats for a wingbeat), half-width {spread or 0:.1f} m/s")
     return "none", "moving, but neither blade flashes nor a wingbeat"

@@ -79,6 +79,10 @@ COLUMNS = (
     Column("flapping_share", "-", "share of the dwell a bird's wings are lit where they go dark between bursts (glides, "
            "or a slow stroke's turns): its wing rows (off the body line, 10 dB over the noise in a quarter of the 64 "
            "ms frames) fall 10 dB or more between the bursts while the body line holds within 3 dB", STATUS),
+    Column("wing_stroke_swing", "-", "how far a flying body's wings' reach moves over the dwell, a share of its "
+           "greatest: the spread (95th less 5th percentile) of each frame's outermost lit wing row's Doppler distance "
+           "from the body line (frames of 64 ms, an eighth of the dwell at most, 50 ms at least); given from 0.15 "
+           "(a stroke: a rotor's tips hold their speed)", STATUS),
     Column("aliased", "true/false", "the micro-Doppler fills the unambiguous span 1/Tp (band over 90 % of it or at both "
            "ends, or the brightest frames of a 64-chirp spectrogram fill it): bandwidths and blade length withheld",
            NO_TARGET),

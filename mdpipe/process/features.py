@@ -21,8 +21,8 @@ from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period
                                     ramp_readable, ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
-from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, Octave, flap_glide_share, wing_reach_hz,
-                                     wingbeat)
+from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, flap_glide_share,
+                                     stroke_swing, wing_reach_hz, wingbeat)
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame ...
 BODY_KEPT_LINE_DB = 3.0      # ... or this far, where it is the strongest line on the body track in ...
@@ -33,6 +33,7 @@ BODY_STEADY_SHARE = 0.5      # frames whose strongest line lies on the smoothed 
 MAX_SPEED_MPS = 25.0         # birds and small drones fly slower: a faster alias of the body Doppler is not taken
 BODY_TRACK_FRAMES = 9        # running median of the body track (rotor lines win single frames)
 BODY_RATE_MEDIAN_S = 0.2     # ... and, for the mean range rate, over this time: a rotor line winning up to 0.1 s
+STROKE_SWING = 0.15          # wings' reach swinging this share of its greatest over the dwell: a stroke (rotors' hold)
 STRAIGHT_BINS = 0.25         # a range track straightened by the Doppler lies this close (rms) to a line, or they disagree
 STATIC_LINE_S = 0.25         # the line at 0 Hz (clutter, and what its removal leaves) followed over this time ...
 STATIC_CLEAR_NULLS = 4.0     # ... where the body line lies this many of its smoothing's first nulls from 0 Hz
@@ -79,6 +80,7 @@ FEATURE_GROUPS = {
     "body_velocity_mps": ("body_doppler_hz",),
     "wingbeat_freq_hz": ("wingbeat_period_s",),
     "flapping_share": (),
+    "wing_stroke_swing": (),
 }
 VALUE_KEYS = tuple(key for primary, derived in FEATURE_GROUPS.items() for key in (primary, *derived))
 STATUS_KEYS = tuple(f"{key}_status" for key in VALUE_KEYS)
@@ -1299,6 +1301,23 @@ def flapping(demodulated, *, prf_hz, noise_power):
     return Measured(share)
 
 
+def wing_stroke(demodulated, *, prf_hz, noise_power, body_velocity, dwell_s):
+    """How far a flying body's wings' reach swings over the dwell, a share of its greatest
+    (:func:`~mdpipe.process.wingbeat.stroke_swing`): a stroke seen, where the dwell holds too few beats for a
+    wingbeat (birds beating 2-3.5 Hz seen for 0.4-0.9 s). Withheld as ``not_flying`` where the body neither flies
+    nor travels (:func:`_least_wing_spread_mps`: a swaying branch's reach swings too), ``dwell_short`` where the
+    frames are shorter than a slow rotor's turn, ``no_stroke`` where the reach swings under ``STROKE_SWING`` or no
+    wing rows are lit."""
+    if not _least_wing_spread_mps(body_velocity, dwell_s=dwell_s)[0]:
+        return withheld("not_flying", "")
+    if dwell_s / 8 < STROKE_FRAME_S:
+        return withheld("dwell_short", "")
+    swing = stroke_swing(demodulated, prf_hz=prf_hz, noise_power=noise_power)
+    if swing is None or swing < STROKE_SWING:
+        return withheld("no_stroke", "")
+    return Measured(swing)
+
+
 def _wing_reach_mps(demodulated, *, prf_hz, noise_power, wavelength_m):
     """:func:`~mdpipe.process.wingbeat.wing_reach_hz` as a speed (m/s), or None."""
     reach_hz = wing_reach_hz(demodulated, prf_hz=prf_hz, noise_power=noise_power)
@@ -1433,10 +1452,11 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     wings_may_repeat = (turn.chopping.value is None and turn.chopping.status == "ambiguous_period"
                         and not band.aliased)  # (or wings' beat: see _wings_over_ambiguous_period)
     if turn.chopping.value is not None or (turn.chopping.status in ROTOR_EVIDENCE and not wings_may_repeat):
-        beat = flaps = withheld("not_applicable", "")  # blade flashes exclude a bird
+        beat = flaps = stroke = withheld("not_applicable", "")  # blade flashes exclude a bird
     elif turn.chopping.status == "not_rotor":  # a comb spaced over any wingbeat (combs.MIN_CHOP_HZ up)
-        beat = flaps = withheld("not_applicable", "no wingbeat read: a line comb repeats the echo faster than wings "
-                                "beat, and a slower repeat in it is its lines' beat (rotors at rates apart)")
+        beat = flaps = stroke = withheld("not_applicable", "no wingbeat read: a line comb repeats the echo faster "
+                                         "than wings beat, and a slower repeat in it is its lines' beat (rotors at "
+                                         "rates apart)")
     else:
         reach = functools.cache(lambda: _wing_reach_mps(body.demodulated, prf_hz=prf_hz, noise_power=noise_power,
                                                         wavelength_m=wavelength_m))
@@ -1447,11 +1467,16 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         flaps = wings(flaps, band.halfwidth, body.velocity, dwell_s=dwell_s, reach_mps=reach,
                       described=flaps.value is not None and f"a micro-Doppler in bursts over {flaps.value:.0%} of the "
                       "dwell, dark between them,")
+        stroke = wing_stroke(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, body_velocity=body.velocity,
+                             dwell_s=dwell_s)
+        stroke = wings(stroke, band.halfwidth, body.velocity, dwell_s=dwell_s, reach_mps=reach,
+                       described=stroke.value is not None and f"a micro-Doppler whose reach swings {stroke.value:.0%} "
+                       "of its greatest over the dwell")
         if wings_may_repeat:
             turn, beating = _wings_over_ambiguous_period(turn, beat, body_velocity=body.velocity, dwell_s=dwell_s,
                                                          reach_mps=reach)
             if not beating:
-                beat = flaps = withheld("not_applicable", "")  # blade flashes exclude a bird
+                beat = flaps = stroke = withheld("not_applicable", "")  # blade flashes exclude a bird
     rate_hz = turn.rate.value
     row = {
         **_columns("snr_db", snr_db),
@@ -1468,6 +1493,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         **_columns("body_velocity_mps", body.velocity, {"body_doppler_hz": body_doppler_hz}),
         **_columns("wingbeat_freq_hz", beat, beat.value and {"wingbeat_period_s": 1.0 / beat.value}),
         **_columns("flapping_share", flaps),
+        **_columns("wing_stroke_swing", stroke),
         "aliased": bool(band.aliased), "n_rotors": len(turn.rotor_rates_hz) or None,
         "n_blades": turn.n_blades, "n_blades_source": turn.n_blades_source,
     }
@@ -1475,7 +1501,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
     row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
     notes = [m.note for m in (body.velocity, band.halfwidth, bandwidth, turn.chopping, turn.rate, tip, length, beat,
-                              flaps)
+                              flaps, stroke)
              if m.note and (m.status != OK or m is body.velocity)]
     notes = list(dict.fromkeys(notes))  # one sentence once (blade length and its tip share theirs)
     notes.extend(display_adjustments(params, shown, prf_hz=prf_hz, dwell_s=dwell_s))

@@ -42,6 +42,9 @@ STATUS_CODES = {
     "below_threshold": "nothing in the spectrum stands the threshold above its mean",
     "no_wingbeat": "no repeating wingbeat pattern in the dwell",
     "no_glide": "no flapping bursts with glides between them (wings that beat throughout, or no wings)",
+    "no_stroke": "no wing rows whose reach changes over the dwell as a stroke's does (a rotor's holds, a glide's too)",
+    "not_flying": ("the body neither flies nor travels in the dwell: a swaying branch's micro-Doppler changes as a "
+                   "stroke's does"),
     "not_applicable": "not a quantity of this target (e.g. the wingbeat of an echo with blade flashes)",
     "clipping_image": ("the capture clips and this echo is weak enough to be a harmonic or intermodulation image of its "
                        "strongest target (read as `none`)"),
