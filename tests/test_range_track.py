@@ -41,12 +41,27 @@ def test_a_curved_track_less_its_coupling_and_bend_moves_at_the_mean_range_rate(
 
 
 def test_a_track_that_bends_off_the_doppler_gives_no_velocity():
-    """A range track that the Doppler does not straighten (its target lost half-way: the track stops at 10 m while
-    the Doppler says it went on to 20) lies bins off a line: range and Doppler follow different things, and no alias
-    is taken, even one within the track's bound."""
-    t_s = np.linspace(0.0, 2.0, 128)
-    lost = RangeTrack(t_s, 5.0 + np.minimum(10.0 * t_s, 5.0) + 0.5 * np.sin(3 * t_s), BIN_M)
-    assert lost.bend_bins() > STRAIGHT_BINS
-    velocity = dealias_velocity(lost.range_rate_mps()[0], span_mps=25.8, track=lost)
+    """The goose's range track lost half-way (it stays at 34 m from 1.5 s on while the Doppler says the goose flew
+    on past the radar): straightened by the Doppler, which bends it by 5 bins, it still lies bins off a line. Range and
+    Doppler follow different things: no alias is taken, whichever the track's rate would have picked."""
+    t_s = np.linspace(0.0, 3.5, 256)
+    true_m, rate_mps = passing(t_s)
+    lost = RangeTrack(t_s, np.where(t_s < 1.5, true_m, np.interp(1.5, t_s, true_m)), BIN_M)
+    straight = lost.straightened(t_s, doppler_hz(rate_mps, wavelength_m=WAVELENGTH_M), wavelength_m=WAVELENGTH_M)
+    assert straight.doppler_bend_bins > 1.0 and straight.bend_bins() > STRAIGHT_BINS
+    velocity = dealias_velocity(float(np.mean(rate_mps)), span_mps=25.8, track=straight)
     assert velocity.value is None and velocity.status == "velocity_ambiguous"
     assert "does not follow the Doppler" in velocity.note
+
+
+def test_a_track_the_doppler_hardly_bends_keeps_its_own_scatter():
+    """A hovering drone's range track scattering 0.3 bin rms about its place (the tracker on a weak echo) while its
+    Doppler holds: the Doppler bends it by under a bin, the scatter is the track's own, and the rate read within the
+    bins' bound takes the alias as before."""
+    t_s = np.linspace(0.0, 3.5, 256)
+    rng = np.random.default_rng(1)
+    track = RangeTrack(t_s, 20.0 + 0.3 * BIN_M * rng.standard_normal(len(t_s)), BIN_M)
+    straight = track.straightened(t_s, np.full(len(t_s), 2.0), wavelength_m=WAVELENGTH_M)
+    assert straight.doppler_bend_bins < 1.0 and straight.bend_bins() > STRAIGHT_BINS
+    velocity = dealias_velocity(-0.0125, span_mps=25.8, track=straight)
+    assert velocity.status == "ok" and velocity.value == pytest.approx(-0.0125)
