@@ -34,7 +34,7 @@ MAX_SPEED_MPS = 25.0         # birds and small drones fly slower: a faster alias
 BODY_TRACK_FRAMES = 9        # running median of the body track (rotor lines win single frames)
 BODY_RATE_MEDIAN_S = 0.2     # ... and, for the mean range rate, over this time: a rotor line winning up to 0.1 s
 STROKE_SWING = 0.15          # wings' reach swinging this share of its greatest over the dwell: a stroke (rotors' hold)
-STRAIGHT_BINS = 0.25         # a range track the Doppler bent by a bin or more lies this close (rms) to a line, straightened
+STRAIGHT_BINS = 0.25         # a track the Doppler bent a bin or more lies this close (rms) to a line, straightened
 STATIC_LINE_S = 0.25         # the line at 0 Hz (clutter, and what its removal leaves) followed over this time ...
 STATIC_CLEAR_NULLS = 4.0     # ... where the body line lies this many of its smoothing's first nulls from 0 Hz
 MAX_ELEVATION_DEG = 80.0     # beyond it Eq. 6 divides by cos(beta) < 0.17: r is not estimable
@@ -229,9 +229,9 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     the 9-frame track, and its mean read -0.46 m/s for -0.26; a body's monotone track passes such a median
     unchanged, a sway's turns are clipped symmetrically), the frame peaks taken on one branch first
     (:func:`one_branch_hz`), unfolded with the range ``track`` where the Doppler alone is ambiguous
-    (:func:`dealias_velocity`) as the Doppler straightens it (:meth:`RangeTrack.straightened`). The echo is demodulated along the 9-frame track (which follows a
-    body's turns closer: demodulated along the 0.2 s one, a sparrow of the sweep read as a drone), less its line at
-    0 Hz (:func:`static_line`).
+    (:func:`dealias_velocity`) as the Doppler straightens it (:meth:`RangeTrack.straightened`). The echo is
+    demodulated along the 9-frame track (which follows a body's turns closer: demodulated along the 0.2 s one, a
+    sparrow of the sweep read as a drone), less its line at 0 Hz (:func:`static_line`).
     """
     frame_s = min(BODY_FRAME_S, len(signal) / prf_hz)
     spec = doppler.spectrogram(signal, prf_hz=prf_hz, window_s=frame_s, hop_s=frame_s / 4)

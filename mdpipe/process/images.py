@@ -46,4 +46,4 @@ def image_note(image, *, reach_m):
     """The clause for the kept row: where its image lay and why it is no target of its own."""
     return (f"a second detection at {image['range_m']:.2f} m, its line comb at {image['chopping_freq_hz']:.4g} Hz, is "
             f"this drone's range-Doppler image (blade flashes land up to {reach_m:.3g} m off a drone at this radar's "
-            "ramp), not a target: the drone lies between the two, its range here read where the flashes peak")
+            "ramp), not a target: the drone's hub lies at this range or between the two")
