@@ -630,9 +630,9 @@ def stroke_swing(demodulated, *, prf_hz, noise_power):
     ``STROKE_FRAME_S`` or fewer than ``MIN_STROKE_FRAMES`` have a wing row lit.
 
     A wing's tip moves fastest mid-stroke and stops at the turns: its reach swings within one beat. A rotor's tips
-    turn at one speed, and a frame that holds a turn or more shows the same reach from frame to frame. Birds of the
-    held-out bird sweep seen over 1-2 beats swung 0.27-0.59 of their reach; two quadrotors whose blades stood a few dB
-    over the noise (their combs not found), 0.03-0.06.
+    turn at one speed, and a frame that holds a turn or more shows the same reach from frame to frame. Seven birds of
+    the held-out bird sweep seen over 1.1-1.8 beats swung 0.27-0.59 of their reach; two quadrotors whose blades stood a
+    few dB over the noise (their combs not found), 0.03-0.06.
     """
     frame_s = _dwell_frame_s(demodulated, prf_hz=prf_hz)
     if frame_s < STROKE_FRAME_S:
