@@ -50,6 +50,13 @@ def _stop(signum, frame):
     raise KeyboardInterrupt() if signum == signal.SIGINT else Terminated()
 
 
+def _stop_recorded():
+    """Raise the first stop signal :func:`_stop` recorded whose exception a callback swallowed, if any (the main
+    thread only: a handler runs there)."""
+    if _STOPS and threading.current_thread() is threading.main_thread():
+        raise KeyboardInterrupt() if _STOPS[0] == signal.SIGINT else Terminated()
+
+
 def _unraisable(previous):
     """A ``sys.unraisablehook`` that keeps quiet about a stop signal's exception swallowed in a callback
     (:func:`_stop` recorded it; the command ends with it) and passes anything else to ``previous``."""
@@ -95,8 +102,7 @@ class Group(click.Group):
             previous_hook, sys.unraisablehook = sys.unraisablehook, _unraisable(sys.unraisablehook)
         try:
             result = super().invoke(ctx)
-            if _STOPS and main_thread:  # a stop whose exception a callback swallowed: the work went on
-                raise KeyboardInterrupt() if _STOPS[0] == signal.SIGINT else Terminated()
+            _stop_recorded()  # a stop whose exception a callback swallowed after the last capture
             return result
         except click.UsageError as exc:
             exc.exit_code = EXIT_USAGE
@@ -384,6 +390,7 @@ def _run(jobs, *, on_outcome, debug, progress=None, **kwargs):
         on_outcome(outcome)
         if progress is not None:
             progress.update(outcome)
+        _stop_recorded()  # a stop whose exception a callback swallowed ends the run here, not after every capture
 
     def notify(text):
         if progress is not None:

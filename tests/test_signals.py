@@ -170,3 +170,31 @@ def test_a_stop_swallowed_by_a_callback_still_ends_the_command_with_its_code(tmp
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 130
     assert done.stderr == "Interrupted.\n"
+
+
+def test_a_stop_swallowed_by_a_callback_ends_the_run_at_the_next_capture(tmp_path):
+    """The same swallowed SIGINT, landing as three captures are set up: the stop is recorded, and the run ends when
+    the first capture is published (it went on through every capture, and ended with 130 only then): one capture
+    folder, whole, and 130."""
+    folder = tmp_path / "in"
+    (folder / "part0").mkdir(parents=True)
+    for i in range(3):
+        shutil.copy(SAMPLES / "gull_flyby.h5", folder / "part0" / f"c{i}.h5")
+    script = ("import os, signal, sys, weakref\n"
+              "import mdpipe.cli as cli\n"
+              "class Thing: pass\n"
+              "options = cli.reader_options\n"
+              "def interrupt_inside_a_callback(*args):\n"
+              "    thing = Thing()\n"
+              "    keep = weakref.ref(thing, lambda ref: os.kill(os.getpid(), signal.SIGINT))\n"
+              "    del thing\n"
+              "    return options(*args)\n"
+              "cli.reader_options = interrupt_inside_a_callback\n"
+              "sys.argv = ['mdpipe', 'process', sys.argv[1], '--out', sys.argv[2], '--no-figures']\n"
+              "cli.run()\n")
+    out = tmp_path / "out"
+    done = subprocess.run([sys.executable, "-c", script, str(folder), str(out)], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 130
+    assert done.stderr == "Interrupted.\n"
+    assert len(assert_nothing_half_published(out)) == 1
