@@ -220,7 +220,7 @@ def test_the_flapping_share_of_a_bird_gliding_between_bursts(flap_s, glide_s, dw
     """The wings go dark in the glides while the body line holds: the share of frames flapping is the true share
     or more, by at most one 64 ms frame per switch within the dwell (a frame touching a burst is lit)."""
     echo, share = glide_echo(flap_s=flap_s, glide_s=glide_s, dwell_s=dwell_s)
-    measured = wingbeat.flap_glide_share(echo, prf_hz=GLIDE_PRF_HZ, noise_power=1e-4)
+    measured = wingbeat.flap_glide_share(*wingbeat.dwell_frames(echo, prf_hz=GLIDE_PRF_HZ, noise_power=1e-4))
     assert share <= measured <= share + switches * wingbeat.FRAME_S / dwell_s
 
 
@@ -228,13 +228,13 @@ def test_a_target_fading_as_a_whole_does_not_glide():
     """The same bursts, the body line going off with them (a point crossing range bins, a target turning away):
     no glide."""
     echo, _ = glide_echo(flap_s=1.0, glide_s=1.0, dwell_s=4.0, body_fades=True)
-    assert wingbeat.flap_glide_share(echo, prf_hz=GLIDE_PRF_HZ, noise_power=1e-4) is None
+    assert wingbeat.flap_glide_share(*wingbeat.dwell_frames(echo, prf_hz=GLIDE_PRF_HZ, noise_power=1e-4)) is None
 
 
 def test_wings_that_never_stop_do_not_glide():
     """Wings beating through the whole dwell (and rotors, which never stop): no glide."""
     echo, _ = glide_echo(flap_s=1.0, glide_s=1.0, dwell_s=4.0, glides=False)
-    assert wingbeat.flap_glide_share(echo, prf_hz=GLIDE_PRF_HZ, noise_power=1e-4) is None
+    assert wingbeat.flap_glide_share(*wingbeat.dwell_frames(echo, prf_hz=GLIDE_PRF_HZ, noise_power=1e-4)) is None
 
 
 WEAK_PRF_HZ = 2000.0
@@ -263,6 +263,10 @@ def weak_frames(echo, weak=None):
     return wingbeat.wing_frames(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0, frame_s=wingbeat.FRAME_S, weak=weak)
 
 
+def weak_reach_hz(echo):
+    return wingbeat.wing_reach_hz(*wingbeat.dwell_frames(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0), prf_hz=WEAK_PRF_HZ)
+
+
 @pytest.mark.parametrize("seed", [0, 1, 2, 3])
 def test_weak_wings_are_read_in_rows_of_four_bins(seed):
     """Wings 3 dB over the noise per bin, a body line 25 dB: fewer than three wing rows of single bins are lit 10 dB
@@ -273,7 +277,7 @@ def test_weak_wings_are_read_in_rows_of_four_bins(seed):
     assert weak_frames(echo).weak
     found = wingbeat.wingbeat(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0)
     assert found is not None and 1.0 / found.period_s == pytest.approx(3.0, rel=0.02)
-    reach_hz = wingbeat.wing_reach_hz(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0)
+    reach_hz = weak_reach_hz(echo)
     assert 150.0 - 4 * 15.625 <= reach_hz <= 150.0 + 4 * 15.625
 
 
@@ -285,7 +289,7 @@ def test_a_body_line_alone_shows_no_weak_wings(body_cell_db):
     echo = weak_wings_echo(wing_cell_db=-np.inf, body_cell_db=body_cell_db)
     frames = weak_frames(echo, weak=True)
     assert frames.wing_rows() == 0
-    assert wingbeat.wing_reach_hz(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0) is None
+    assert weak_reach_hz(echo) is None
     if body_cell_db == 25.0:  # no single-bin row lit either: the weak look is read, and finds nothing
         assert weak_frames(echo).weak and wingbeat.wingbeat(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0) is None
     if body_cell_db == 50.0:  # the leakage is there to be left out: two bins (2.4 bins from the line) lit
@@ -300,7 +304,7 @@ def test_noise_alone_reaches_nothing():
     rng = np.random.default_rng(5)
     noise = (rng.standard_normal(8000) + 1j * rng.standard_normal(8000)) / np.sqrt(2)
     assert weak_frames(noise, weak=True).wing_rows() == 0
-    assert wingbeat.wing_reach_hz(noise, prf_hz=WEAK_PRF_HZ, noise_power=1.0) is None
+    assert weak_reach_hz(noise) is None
 
 
 @pytest.mark.parametrize("offset_bins", [0.25, 0.5])
@@ -396,7 +400,7 @@ def test_a_wings_reach_swings_within_a_stroke_and_a_rotors_holds():
     body = np.ones(len(t_s))
     wing = np.exp(2j * np.pi * 400.0 / (2 * np.pi * 2.0) * -np.cos(2 * np.pi * 2.0 * t_s))  # f(t) = 400 sin(4 pi t)
     tips = np.exp(2j * np.pi * 400.0 * t_s) + np.exp(-2j * np.pi * 400.0 * t_s)
-    swing = wingbeat.stroke_swing(body + wing + noise, prf_hz=prf_hz, noise_power=1e-4)
-    steady = wingbeat.stroke_swing(body + tips + noise, prf_hz=prf_hz, noise_power=1e-4)
+    swing = wingbeat.stroke_swing(*wingbeat.dwell_frames(body + wing + noise, prf_hz=prf_hz, noise_power=1e-4))
+    steady = wingbeat.stroke_swing(*wingbeat.dwell_frames(body + tips + noise, prf_hz=prf_hz, noise_power=1e-4))
     assert 0.3 < swing < 0.6
     assert steady < 0.05

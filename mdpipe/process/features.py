@@ -21,8 +21,8 @@ from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period
                                     ramp_readable, ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
-from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, flap_glide_share,
-                                     stroke_swing, wing_reach_hz, wingbeat)
+from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, dwell_frames,
+                                     flap_glide_share, stroke_swing, wing_reach_hz, wingbeat)
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame ...
 BODY_KEPT_LINE_DB = 3.0      # ... or this far, where it is the strongest line on the body track in ...
@@ -1295,18 +1295,20 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     return withheld("dwell_short" if dwell_s < 2.0 / MAX_WINGBEAT_HZ else "no_wingbeat", note)
 
 
-def flapping(demodulated, *, prf_hz, noise_power):
-    """The share of the dwell a bird flaps, gliding between bursts (:func:`~mdpipe.process.wingbeat.flap_glide_share`),
-    or withheld as ``no_glide``."""
-    share = flap_glide_share(demodulated, prf_hz=prf_hz, noise_power=noise_power)
+def flapping(dwell):
+    """The share of the dwell a bird flaps, gliding between bursts (:func:`~mdpipe.process.wingbeat.flap_glide_share`
+    on ``dwell``, the dwell's spectrogram and noise level: :func:`~mdpipe.process.wingbeat.dwell_frames`), or withheld
+    as ``no_glide``."""
+    share = flap_glide_share(*dwell)
     if share is None:
         return withheld("no_glide", "")
     return Measured(share)
 
 
-def wing_stroke(demodulated, *, prf_hz, noise_power, body_velocity, dwell_s):
+def wing_stroke(dwell, *, body_velocity, dwell_s):
     """How far a flying body's wings' reach swings over the dwell, a share of its greatest
-    (:func:`~mdpipe.process.wingbeat.stroke_swing`): a stroke seen, where the dwell holds too few beats for a
+    (:func:`~mdpipe.process.wingbeat.stroke_swing` on ``dwell()``, the dwell's spectrogram and noise level): a stroke
+    seen, where the dwell holds too few beats for a
     wingbeat (birds beating 2-3.5 Hz seen for 0.4-0.9 s). Withheld as ``not_flying`` where the body neither flies
     nor travels (:func:`_least_wing_spread_mps`: a swaying branch's reach swings too), ``dwell_short`` where the
     frames are shorter than a slow rotor's turn, ``no_stroke`` where the reach swings under ``STROKE_SWING`` or no
@@ -1315,15 +1317,16 @@ def wing_stroke(demodulated, *, prf_hz, noise_power, body_velocity, dwell_s):
         return withheld("not_flying", "")
     if dwell_s / 8 < STROKE_FRAME_S:
         return withheld("dwell_short", "")
-    swing = stroke_swing(demodulated, prf_hz=prf_hz, noise_power=noise_power)
+    swing = stroke_swing(*dwell())
     if swing is None or swing < STROKE_SWING:
         return withheld("no_stroke", "")
     return Measured(swing)
 
 
-def _wing_reach_mps(demodulated, *, prf_hz, noise_power, wavelength_m):
-    """:func:`~mdpipe.process.wingbeat.wing_reach_hz` as a speed (m/s), or None."""
-    reach_hz = wing_reach_hz(demodulated, prf_hz=prf_hz, noise_power=noise_power)
+def _wing_reach_mps(dwell, *, prf_hz, wavelength_m):
+    """:func:`~mdpipe.process.wingbeat.wing_reach_hz` on ``dwell`` (the dwell's spectrogram and noise level) as a speed
+    (m/s), or None."""
+    reach_hz = wing_reach_hz(*dwell, prf_hz=prf_hz)
     return None if reach_hz is None else abs(_speed_mps(reach_hz, wavelength_m))
 
 
@@ -1461,17 +1464,16 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                          "than wings beat, and a slower repeat in it is its lines' beat (rotors at "
                                          "rates apart)")
     else:
-        reach = functools.cache(lambda: _wing_reach_mps(body.demodulated, prf_hz=prf_hz, noise_power=noise_power,
-                                                        wavelength_m=wavelength_m))
+        dwell = functools.cache(lambda: dwell_frames(body.demodulated, prf_hz=prf_hz, noise_power=noise_power))
+        reach = functools.cache(lambda: _wing_reach_mps(dwell(), prf_hz=prf_hz, wavelength_m=wavelength_m))
         beat = wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
                                    band_hz=2 * band.half_width_hz), band.halfwidth, body.velocity, dwell_s=dwell_s,
                      reach_mps=reach)
-        flaps = flapping(body.demodulated, prf_hz=prf_hz, noise_power=noise_power)
+        flaps = flapping(dwell())
         flaps = wings(flaps, band.halfwidth, body.velocity, dwell_s=dwell_s, reach_mps=reach,
                       described=flaps.value is not None and f"a micro-Doppler in bursts over {flaps.value:.0%} of the "
                       "dwell, dark between them,")
-        stroke = wing_stroke(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, body_velocity=body.velocity,
-                             dwell_s=dwell_s)
+        stroke = wing_stroke(dwell, body_velocity=body.velocity, dwell_s=dwell_s)
         stroke = wings(stroke, band.halfwidth, body.velocity, dwell_s=dwell_s, reach_mps=reach,
                        described=stroke.value is not None and f"a micro-Doppler whose reach swings {stroke.value:.0%} "
                        "of its greatest over the dwell")

@@ -110,6 +110,13 @@ def _dwell_frame_s(demodulated, *, prf_hz):
     return min(FRAME_S, len(demodulated) / prf_hz / 8)
 
 
+def dwell_frames(demodulated, *, prf_hz, noise_power):
+    """The dwell's spectrogram read for wings as a whole, of ``FRAME_S`` frames (an eighth of the dwell at most), and
+    its noise level per bin: what :func:`flap_glide_share`, :func:`stroke_swing` and :func:`wing_reach_hz` read."""
+    return _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
+                   frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz))
+
+
 def _frames(demodulated, *, prf_hz, noise_power, frame_s):
     """The spectrogram of ``frame_s`` frames (hop a quarter of it) and its noise level per bin."""
     spec = spectrogram(demodulated, prf_hz=prf_hz, window_s=frame_s, hop_s=HOP_S * frame_s / FRAME_S)
@@ -159,6 +166,19 @@ def bursts(flapping):
     return edges.reshape(-1, 2)
 
 
+def _gliding(spec, *, noise_level, frame_rate, lit_db=SIGNAL_ROW_DB):
+    """The rows of ``spec`` lit in a quarter of the frames and the frames in which they flap
+    (:func:`flapping_frames`), where a bird glides between bursts; None where fewer than ``MIN_WING_ROWS`` rows are
+    lit, or the rows flap throughout but ``MIN_GLIDE_SHARE`` of the dwell, or never."""
+    rows = _lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1], lit_db=lit_db)
+    if len(rows) < MIN_WING_ROWS:
+        return None
+    flapping = flapping_frames(rows, noise_level=noise_level, frame_rate=frame_rate, lit_db=lit_db)
+    if not flapping.any() or flapping.mean() > 1 - MIN_GLIDE_SHARE:
+        return None
+    return rows, flapping
+
+
 def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate, lit_db=SIGNAL_ROW_DB):
     """The pattern autocorrelation of a bird that glides between flapping bursts, within its bursts only.
 
@@ -173,12 +193,10 @@ def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate, lit_db=SIGNA
     glide (frames not flapping in under ``MIN_GLIDE_SHARE`` of the dwell), flap for under ``FLAP_SMOOTH_S``,
     or fewer than ``MIN_WING_ROWS`` rows are lit.
     """
-    rows = _lit_rows(spec, noise_level, SIGNAL_ROW_PERCENTILES[-1], lit_db=lit_db)
-    if len(rows) < MIN_WING_ROWS:
+    gliding = _gliding(spec, noise_level=noise_level, frame_rate=frame_rate, lit_db=lit_db)
+    if gliding is None:
         return None
-    flapping = flapping_frames(rows, noise_level=noise_level, frame_rate=frame_rate, lit_db=lit_db)
-    if not flapping.any() or flapping.mean() > 1 - MIN_GLIDE_SHARE:
-        return None
+    rows, flapping = gliding
     rows = np.log(rows + np.finfo(float).tiny)
     n = rows.shape[1]
     straddling = _frames_per_window(spec) // 2  # frames a switch falls in, each side of it
@@ -407,9 +425,9 @@ def weak_rows(spec, noise_level, *, max_hz=MAX_MICRO_DOPPLER_HZ):
                        f_hz=np.array([f_hz[g].mean() for g in groups]), window_s=spec.window_s, hop_s=spec.hop_s)
 
 
-def wing_reach_hz(demodulated, *, prf_hz, noise_power):
-    """How far from the body line (Hz) the echo's rows of :func:`weak_rows`, over the whole span, reach, lit
-    ``WEAK_ROW_DB`` over the noise in a quarter of the frames (of ``FRAME_S``, an eighth of the dwell at most): the
+def wing_reach_hz(spec, noise_level, *, prf_hz):
+    """How far from the body line (Hz) the rows of :func:`weak_rows`, over the whole span, reach, lit ``WEAK_ROW_DB``
+    over the noise in a quarter of the frames of the dwell's spectrogram ``spec`` (:func:`dwell_frames`): the
     outer edge of the outermost such row. None where fewer than ``MIN_WING_ROWS`` are, or where they reach past
     ``REACH_SPAN_SHARE`` of the span's half (the reach is then unknown: faint blade flashes that fill the span
     light it so, a quadrotor at 77 GHz to 97 % of it, and so do a gull's wings at 94 GHz).
@@ -420,8 +438,6 @@ def wing_reach_hz(demodulated, *, prf_hz, noise_power):
     blades reach on past wings (a quadrotor at K band, its lines 12 dB over the noise, its rows beat at 11.7 Hz
     and, read to 2 kHz only, passed for wings).
     """
-    spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
-                                frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz))
     rows = weak_rows(spec, noise_level, max_hz=np.inf)
     lit = _lit_mask(rows, noise_level, SIGNAL_ROW_PERCENTILES[-1], off_hz=_body_hz(spec, BODY_LOBE_BINS),
                     lit_db=WEAK_ROW_DB, max_hz=np.inf)
@@ -503,14 +519,12 @@ def burst_cycle_s(frames):
     """The cycle (s) of a bird's flap-glide bursts in ``frames``: the median time between its switches from gliding
     to flapping, and between those from flapping to gliding (the record's own start and end are none); None where it
     does not glide (:func:`flapping_frames` on the rows :func:`gated_pattern_autocorrelation` reads, not flapping in
-    ``MIN_GLIDE_SHARE`` of the dwell at least) or shows no two switches of one kind."""
-    rows = _lit_rows(frames.spec, frames.noise_level, SIGNAL_ROW_PERCENTILES[-1], lit_db=frames.lit_db)
-    if len(rows) < MIN_WING_ROWS:
+    ``MIN_GLIDE_SHARE`` of the dwell at least: :func:`_gliding`) or shows no two switches of one kind."""
+    gliding = _gliding(frames.spec, noise_level=frames.noise_level, frame_rate=frames.frame_rate,
+                       lit_db=frames.lit_db)
+    if gliding is None:
         return None
-    flapping = flapping_frames(rows, noise_level=frames.noise_level, frame_rate=frames.frame_rate,
-                               lit_db=frames.lit_db)
-    if not flapping.any() or flapping.mean() > 1 - MIN_GLIDE_SHARE:
-        return None
+    flapping = gliding[1]
     runs = bursts(flapping)
     starts, stops = runs[:, 0][runs[:, 0] > 0], runs[:, 1][runs[:, 1] < len(flapping)]
     gaps = np.concatenate([np.diff(starts), np.diff(stops)])
@@ -584,10 +598,10 @@ def _gated_period(frames):
     return found if found.strength >= needed else None
 
 
-def flap_glide_share(demodulated, *, prf_hz, noise_power):
+def flap_glide_share(spec, noise_level):
     """The share of the dwell a bird flaps, where it glides between flapping bursts; None where it does not.
 
-    On a spectrogram of ``FRAME_S`` frames (an eighth of the dwell at most), the wing rows are those within
+    On the dwell's spectrogram ``spec`` (:func:`dwell_frames`; ``noise_level`` per bin), the wing rows are those within
     ``MAX_MICRO_DOPPLER_HZ`` lit in a quarter of the frames and off the body line (``BODY_BINS`` of 0 Hz),
     ``MIN_WING_ROWS`` of them at least; :func:`flapping_frames` marks where they flap. A glide is frames not
     flapping in ``MIN_GLIDE_SHARE`` of the dwell at least (and flapping in as much), in which the wing rows' median
@@ -598,8 +612,6 @@ def flap_glide_share(demodulated, *, prf_hz, noise_power):
     the body within 1.5 dB). The wings of a slow stroke also go dark at its turns, where they move no faster than
     the body (the paper's Table II birds beating 0.5 Hz: lit 83 % of the dwell): a bird too.
     """
-    spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
-                                frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz))
     frames = _read_for_wings(spec, noise_level, weak=None, body_bins=BODY_BINS)
     wings = frames.lit_rows(SIGNAL_ROW_PERCENTILES[-1], wings_only=True)
     body = spec.power[np.abs(spec.f_hz) <= frames.off_hz]
@@ -622,22 +634,19 @@ def flap_glide_share(demodulated, *, prf_hz, noise_power):
     return share
 
 
-def stroke_swing(demodulated, *, prf_hz, noise_power):
-    """How far the wings' reach moves over the dwell: the spread (95th less 5th percentile) of each frame's outermost lit
-    wing row's distance from the body line, over the frames with a wing row lit, as a share of the greatest; None
-    where fewer than ``MIN_WING_ROWS`` rows off the body line are lit in a quarter of the frames (of ``FRAME_S``, an
-    eighth of the dwell at most: :func:`wing_frames`, weak wings' rows averaged), the frames are shorter than
-    ``STROKE_FRAME_S`` or fewer than ``MIN_STROKE_FRAMES`` have a wing row lit.
+def stroke_swing(spec, noise_level):
+    """How far the wings' reach moves over the dwell: the spread (95th less 5th percentile) of each frame's outermost
+    lit wing row's distance from the body line, over the frames with a wing row lit, as a share of the greatest; None
+    where fewer than ``MIN_WING_ROWS`` rows off the body line are lit in a quarter of the frames of the dwell's
+    spectrogram ``spec`` (:func:`dwell_frames`, weak wings' rows averaged) or fewer than ``MIN_STROKE_FRAMES`` have a
+    wing row lit. Frames shorter than ``STROKE_FRAME_S`` are the caller's to refuse.
 
     A wing's tip moves fastest mid-stroke and stops at the turns: its reach swings within one beat. A rotor's tips
     turn at one speed, and a frame that holds a turn or more shows the same reach from frame to frame. Seven birds of
     the held-out bird sweep seen over 1.1-1.8 beats swung 0.27-0.59 of their reach; two quadrotors whose blades stood a
     few dB over the noise (their combs not found), 0.03-0.06.
     """
-    frame_s = _dwell_frame_s(demodulated, prf_hz=prf_hz)
-    if frame_s < STROKE_FRAME_S:
-        return None
-    frames = wing_frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s, body_bins=BODY_BINS)
+    frames = _read_for_wings(spec, noise_level, weak=None, body_bins=BODY_BINS)
     spec = frames.spec
     rows = _lit_mask(spec, frames.noise_level, SIGNAL_ROW_PERCENTILES[-1], off_hz=frames.off_hz, lit_db=frames.lit_db)
     if np.count_nonzero(rows) < MIN_WING_ROWS:
