@@ -150,24 +150,32 @@ def test_two_runs_on_one_out_at_once(folder, tmp_path):
     assert len(json.loads((out / "manifest.json").read_text())["captures"]) == N_CAPTURES
 
 
+# `mdpipe process INPUT --out OUT` whose reader options, read as its captures are set up, send SIGINT from inside a
+# weakref callback, where Python swallows the KeyboardInterrupt the handler raises
+SWALLOWED_STOP = ("import os, signal, sys, weakref\n"
+                  "import mdpipe.cli as cli\n"
+                  "class Thing: pass\n"
+                  "options = cli.reader_options\n"
+                  "def interrupt_inside_a_callback(*args):\n"
+                  "    thing = Thing()\n"
+                  "    keep = weakref.ref(thing, lambda ref: os.kill(os.getpid(), signal.SIGINT))\n"
+                  "    del thing\n"
+                  "    return options(*args)\n"
+                  "cli.reader_options = interrupt_inside_a_callback\n"
+                  "sys.argv = ['mdpipe', 'process', sys.argv[1], '--out', sys.argv[2], '--no-figures']\n"
+                  "cli.run()\n")
+
+
+def process_with_a_swallowed_stop(inputs, out):
+    return subprocess.run([sys.executable, "-c", SWALLOWED_STOP, str(inputs), str(out)], capture_output=True,
+                          text=True, timeout=120)
+
+
 def test_a_stop_swallowed_by_a_callback_still_ends_the_command_with_its_code(tmp_path):
     """SIGINT landing inside a weakref callback raises KeyboardInterrupt there, where Python swallows it (and
     printed "Exception ignored in ..."): the command went on and exited 0. The stop is recorded; the command
     ends with 130 and one line, and the swallowed exception prints nothing."""
-    script = ("import os, signal, sys, weakref\n"
-              "import mdpipe.cli as cli\n"
-              "class Thing: pass\n"
-              "options = cli.reader_options\n"
-              "def interrupt_inside_a_callback(*args):\n"
-              "    thing = Thing()\n"
-              "    keep = weakref.ref(thing, lambda ref: os.kill(os.getpid(), signal.SIGINT))\n"
-              "    del thing\n"
-              "    return options(*args)\n"
-              "cli.reader_options = interrupt_inside_a_callback\n"
-              "sys.argv = ['mdpipe', 'process', sys.argv[1], '--out', sys.argv[2], '--no-figures']\n"
-              "cli.run()\n")
-    done = subprocess.run([sys.executable, "-c", script, str(SAMPLES / "gull_flyby.h5"), str(tmp_path / "out")],
-                          capture_output=True, text=True, timeout=120)
+    done = process_with_a_swallowed_stop(SAMPLES / "gull_flyby.h5", tmp_path / "out")
     assert done.returncode == 130
     assert done.stderr == "Interrupted.\n"
 
@@ -180,21 +188,8 @@ def test_a_stop_swallowed_by_a_callback_ends_the_run_at_the_next_capture(tmp_pat
     (folder / "part0").mkdir(parents=True)
     for i in range(3):
         shutil.copy(SAMPLES / "gull_flyby.h5", folder / "part0" / f"c{i}.h5")
-    script = ("import os, signal, sys, weakref\n"
-              "import mdpipe.cli as cli\n"
-              "class Thing: pass\n"
-              "options = cli.reader_options\n"
-              "def interrupt_inside_a_callback(*args):\n"
-              "    thing = Thing()\n"
-              "    keep = weakref.ref(thing, lambda ref: os.kill(os.getpid(), signal.SIGINT))\n"
-              "    del thing\n"
-              "    return options(*args)\n"
-              "cli.reader_options = interrupt_inside_a_callback\n"
-              "sys.argv = ['mdpipe', 'process', sys.argv[1], '--out', sys.argv[2], '--no-figures']\n"
-              "cli.run()\n")
     out = tmp_path / "out"
-    done = subprocess.run([sys.executable, "-c", script, str(folder), str(out)], capture_output=True, text=True,
-                          timeout=120)
+    done = process_with_a_swallowed_stop(folder, out)
     assert done.returncode == 130
     assert done.stderr == "Interrupted.\n"
     assert len(assert_nothing_half_published(out)) == 1
