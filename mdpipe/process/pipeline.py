@@ -15,6 +15,7 @@ from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analy
 MIN_CHIRPS = 64
 TRACK_POINTS = 256  # range track points kept per target (for its range rate and extent)
 SAME_TRACK_BINS = 1.5  # two detections whose tracks are this close on average (range bins) are one target
+HUB_FIXED_BINS = 1.0   # a drone's hub between its range-Doppler images moving less over the dwell is held at one range
 
 
 @dataclass
@@ -96,14 +97,71 @@ def flash_views(reader, track_bins, weight, process):
                                                        chunk_chirps=process.chunk_chirps))
 
 
-def without_images(detections, targets, rows, analyses, params):
+def analysed_row(reader, detection, target, track_bins, *, process, noise_power, base, capture_notes):
+    """One target's row (``base()`` filled in: range, features, class and notes) and its analysis, from its
+    ``detection``, ``target`` (:func:`target_signals`: range track, slow time, RX gain, RX weights) and per-chirp
+    ``track_bins``."""
+    params = reader.params
+    track, signal, rx_gain_db, weight = target
+    analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m, noise_power=noise_power,
+                              params=process, track=None if detection.fixed_bin is not None else track,  # fixed: no track
+                              flash_views=flash_views(reader, track_bins, weight, process),
+                              ramp_share=params.sampled_duration_s / params.chirp_period_s)
+    row = base()
+    row.update(range_m=detection.range_m, range_bin=int(detection.bin), range_min_m=float(track.range_m.min()),
+               range_max_m=float(track.range_m.max()), rx_gain_db=rx_gain_db)
+    row.update(analysis.row)
+    label, reason = classify(row, detected=True)
+    row["class"] = label
+    row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + capture_notes)
+    return row, analysis
+
+
+def hub_target(reader, stats, owner, image, process, analyse):
+    """The drone whose range-Doppler images are the targets ``owner`` and ``image`` (each a :func:`target_tracks`
+    entry), analysed at its hub, midway between them: (detection, target, row, analysis), ``analyse`` giving the
+    row and analysis (:func:`analysed_row`). One more pass over the capture, for its slow time.
+
+    Each image's track follows its own side's flashes as they brighten and fade (the two images of a hovering 3-blade
+    quadrotor at 94 GHz drifted 0.9 bin over 0.55 s), and a track that wanders splatters the slow time's spectrum.
+    The hub is followed along the straight line through the midpoints of their tracks
+    (:func:`mdpipe.process.selection.straight_track`) where that moves more than ``HUB_FIXED_BINS`` over the dwell,
+    else held at its mean: a fixed bin holds a target within half a bin of it."""
+    (first, first_bins, first_visits), (second, second_bins, second_visits) = owner, image
+    line = selection.straight_track((first_bins + second_bins) / 2)
+    held = abs(line[-1] - line[0]) <= HUB_FIXED_BINS * process.zero_pad
+    hub_bin = float(line.mean())
+    detection = selection.detection_between(stats, first, second, fixed_bin=hub_bin if held else None,
+                                            range_m=float(ranging.bin_range_m(hub_bin, reader.params, process.zero_pad)))
+    track_bins = np.full_like(line, detection.fixed_bin) if held else line
+    target = target_signals(reader, stats, [(detection, track_bins, first_visits + second_visits)], process)[0]
+    return (detection, target, *analyse(detection, target, track_bins))
+
+
+def without_images(detections, targets, rows, analyses, params, hub=None):
     """The four per-target lists less the targets that are a stronger drone's range-Doppler image
-    (:func:`mdpipe.process.images.image_owners`), noted on that drone's row; the rows renumbered."""
+    (:func:`mdpipe.process.images.image_owners`), noted on that drone's row; the rows renumbered.
+
+    A drone seen only as images (:func:`mdpipe.process.images.seen_from_a_side`) is analysed at its hub by
+    ``hub(owner, image)`` (indices; None: not analysed again), and that row replaces the stronger image's where it
+    is a drone's: each image holds one side's blade flashes, the approaching blades' or the receding ones', so that
+    its flashes repeat once per chopping period whatever the blade count (a 3-blade quadrotor at 94 GHz read at
+    half its chopping frequency, its flashes taken for an odd count's two per period)."""
     reach_m = images.image_reach_m(params)
     owners = images.image_owners(rows, reach_m=reach_m)
+    rows, detections, targets, analyses = list(rows), list(detections), list(targets), list(analyses)
+    moved = set()
     for image, owner in enumerate(owners):
-        if owner is not None:
-            rows[owner]["notes"] += "; " + images.image_note(rows[image], reach_m=reach_m)
+        if owner is None:
+            continue
+        note = images.image_note(rows[image], reach_m=reach_m)
+        if hub is not None and owner not in moved and images.seen_from_a_side(rows[owner]):
+            detection, target, row, analysis = hub(owner, image)
+            if row["class"] == "drone":
+                note = images.hub_note(rows[owner], rows[image], reach_m=reach_m)
+                detections[owner], targets[owner], rows[owner], analyses[owner] = detection, target, row, analysis
+                moved.add(owner)
+        rows[owner]["notes"] += "; " + note
     kept = [i for i, owner in enumerate(owners) if owner is None]
     rows = [rows[i] for i in kept]
     for index, row in enumerate(rows):
@@ -188,24 +246,17 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         detections = [detection for detection, _, _ in tracks]
         targets = target_signals(reader, stats, tracks, process)
         layout = reader.layout.describe()
-        for index, (detection, (track, signal, rx_gain_db, weight), (_, track_bins, _)) in enumerate(
-                zip(detections, targets, tracks)):
-            analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m,
-                                      noise_power=noise, params=process,
-                                      track=None if detection.fixed_bin is not None else track,  # fixed: no track
-                                      flash_views=flash_views(reader, track_bins, weight, process),
-                                      ramp_share=params.sampled_duration_s / params.chirp_period_s)
-            range_min_m, range_max_m = float(track.range_m.min()), float(track.range_m.max())
-            row = _base_row(path, stats, process, params, clipped, common)
-            row.update(target=index, range_m=detection.range_m, range_bin=int(detection.bin),
-                       range_min_m=range_min_m, range_max_m=range_max_m, rx_gain_db=rx_gain_db)
-            row.update(analysis.row)
-            label, reason = classify(row, detected=True)
-            row["class"] = label
-            row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + capture_notes)
+        analyse = functools.partial(analysed_row, reader, process=process, noise_power=noise,
+                                    base=lambda: _base_row(path, stats, process, params, clipped, common),
+                                    capture_notes=capture_notes)
+        for index, (detection, target, (_, track_bins, _)) in enumerate(zip(detections, targets, tracks)):
+            row, analysis = analyse(detection, target, track_bins)
+            row["target"] = index
             rows.append(row)
             analyses.append(analysis)
-        detections, targets, rows, analyses = without_images(detections, targets, rows, analyses, params)
+        detections, targets, rows, analyses = without_images(
+            detections, targets, rows, analyses, params,
+            hub=lambda owner, image: hub_target(reader, stats, tracks[owner], tracks[image], process, analyse))
         levels_db = [detection.snr_db if row["snr_db"] is None else row["snr_db"]
                      for detection, row in zip(detections, rows)]
         rows = saturation.saturated_rows(rows, levels_db, clipped, capture_notes)

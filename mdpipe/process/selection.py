@@ -190,6 +190,24 @@ def manual_detection(stats, range_m, *, gate_m, params, zero_pad=1):
                      float(10 * np.log10(max(power[index], np.finfo(float).tiny) / floor)), fixed_bin=float(fixed_bin))
 
 
+def detection_between(stats, first, second, *, range_m, fixed_bin=None):
+    """A detection at ``range_m`` between the detections ``first`` and ``second`` (the hub between a drone's two
+    range-Doppler images): its gate bin the nearer to their middle, its SNR that bin's; held at ``fixed_bin``
+    (padded grid) if given."""
+    index = int(np.floor((first.gate_index + second.gate_index) / 2 + 0.5))
+    floor = max(noise_power(stats), np.finfo(float).tiny)
+    power = max(float(stats.gate_moving_power[index]), np.finfo(float).tiny)
+    return Detection(index, int(stats.gate_bins[index]), float(range_m), float(10 * np.log10(power / floor)),
+                     fixed_bin=fixed_bin)
+
+
+def straight_track(track_bins):
+    """The least-squares straight line through a per-chirp track (bins): a drone's hub at a constant range rate."""
+    chirps = np.arange(len(track_bins), dtype=np.float64)
+    slope, intercept = np.polyfit(chirps, track_bins, 1)
+    return intercept + slope * chirps
+
+
 def channel_weights(covariance):
     """Coherent combining toward the target: the dominant eigenvector of each bin's moving covariance.
 
