@@ -1407,3 +1407,36 @@ def test_a_drone_seen_only_as_its_two_range_doppler_images_is_analysed_at_its_hu
     assert rows[0]["range_m"] == pytest.approx(true_range_m, abs=0.3)  # a range bin: 0.6 m
     assert rows[0]["chopping_freq_hz_status"] == "ok"
     assert rows[0]["chopping_freq_hz"] == pytest.approx(3 * np.mean(np.abs(rates)), rel=0.02)
+
+
+def test_two_blades_given_whose_power_repeats_twice_per_comb_spacing_turn_at_the_comb(tmp_path):
+    """An X-band quadrotor of a fresh draw of the default sweep (seed 777, scene 140; clutter left out) seen from 86
+    deg, one blade of each rotor 1.3 times the other: its comb lines the turn rate, 131 Hz, and its power repeats at
+    twice it, the chopping. Two equal blades' power repeats once per chopping period, so with 2 blades given the comb
+    is the turn: 130.5 rev/s (it read 65.5, the comb taken for the chopping)."""
+    radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=6.18726e-05, chirp_period_s=7.73407e-05,
+                 sample_rate_hz=1034383.5569218041, n_samples=64, n_chirps=3398, n_channels=2)
+    rates = [130.0, -130.174, 130.566, -131.287]
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 85.9363, "body_rcs_m2": 0.00483387,
+            "motion": {"position_m": [31.634, 11.327, 14.4525], "velocity_mps": [1.93172, 9.56588, 0.0],
+                       "sway_amplitude_m": [0.0765857, 0.0281686, 0.0143972], "sway_period_s": 4.80111},
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [271.27, 262.372, 33.9247, 78.7737], "blade_rcs_m2": 0.00514186,
+                       "tilt_deg": [-0.309295, -1.32632, 4.84657, -1.6182], "blades": 2, "arm_m": 0.143322,
+                       "blade_length_m": 0.116692, "rev_per_s": rates, "blade_gains": [1.0, 1.32387]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=-0.794437, seed=805515940, n_blades=2,
+                    elevation_deg=85.9363)
+    assert row["class"] == "drone" and row["rotation_rate_hz_status"] == "ok"
+    assert row["rotation_rate_hz"] == pytest.approx(np.mean(np.abs(rates)), rel=0.02)
+    assert row["chopping_freq_hz"] == pytest.approx(2 * np.mean(np.abs(rates)), rel=0.02)
+    assert "lines the turn rate" in row["notes"]
+
+
+def test_four_blades_given_on_a_comb_whose_power_repeats_twice_per_spacing_give_no_rate():
+    """Four equal blades' power repeats once per chopping period; twice per comb spacing, the comb lines a turn (one
+    blade differing, the chopping 4 times it) or half a turn (two opposite blades differing, twice it): withheld."""
+    from mdpipe.process.features import _turn_comb
+    assert np.allclose(_turn_comb(np.array([60.0, 61.0]), n_blades=2), [120.0, 122.0])
+    held = _turn_comb(np.array([60.0]), n_blades=4)
+    assert held.rate.value is None and held.rate.status == "ambiguous_period"
+    assert held.chopping.value is None and "240 Hz" in held.chopping.note and "120 Hz" in held.chopping.note

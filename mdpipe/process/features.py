@@ -847,6 +847,24 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                                          n_blades=n_blades if n_blades is not None else measured_n)
         if chopping_hz is None:
             return held
+    @functools.cache
+    def parity_and_doubling(chop_hz):
+        """(parity, doubled) of the flashes on a comb at ``chop_hz``: odd N by their Doppler sides (True: by turns,
+        False: both at once, None: untold; flashes alternating range sides tell an odd N aliased too), else whether
+        their power repeats twice per spacing (:func:`mdpipe.process.combs.flashes_doubled`)."""
+        parity = True if alternating else None if aliased else combs.odd_blades(micro, chop_hz, prf_hz=prf_hz,
+                                                                                 half_width_hz=sides_band_hz)
+        return parity, parity if aliased or parity is not None else combs.flashes_doubled(
+            micro, chop_hz, prf_hz=prf_hz, half_width_hz=count_band_hz)
+
+    turn_note = ""
+    if (not aliased and n_blades is not None and n_blades % 2 == 0 and measured_n is None and least_n is None
+            and parity_and_doubling(float(chopping_hz[0]))[1]):
+        chopping_hz = _turn_comb(chopping_hz, n_blades=n_blades)
+        if isinstance(chopping_hz, Rotation):
+            return chopping_hz
+        turn_note = (f"the power repeats twice per spacing of the comb at {chopping_hz[0] / 2:.4g} Hz: with 2 blades "
+                     "given, it lines the turn rate (one blade differing), and the chopping is twice it")
     least_mps = least_tip_speed_mps(float(chopping_hz.max()), n_blades=n_blades, elevation_deg=elevation_deg)
     if not aliased and halfwidth_mps is not None and halfwidth_mps < least_mps:
         weak = _power_flashes(power(), n_blades=n_blades, alternate=alternate)
@@ -863,10 +881,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                 f"rate whose phases cancel the lines between (the chopping {chopping_value:.4g} Hz); rotors resolved "
                 "at rates apart, or the echo repeating each 1/N turn, would tell")
         return Rotation.withheld("ambiguous_period", note)
-    parity = True if alternating else None if aliased else combs.odd_blades(micro, float(chopping_hz[0]),
-                                                                             prf_hz=prf_hz, half_width_hz=sides_band_hz)
-    doubled = parity if aliased or parity is not None else combs.flashes_doubled(
-        micro, float(chopping_hz[0]), prf_hz=prf_hz, half_width_hz=count_band_hz)
+    parity, doubled = parity_and_doubling(float(chopping_hz[0]))
     blades, source, conflict = _blade_count(measured_n, parity, n_blades=n_blades, doubled=doubled, least=least_n)
     if conflict:
         note = f"chopping frequency uncertain and rotation not estimable: {conflict}"
@@ -897,8 +912,24 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         measured = Measured(rate, "assumed_blades", f"rotation rate assumes N = {blades} blades (the echo does not "
                             "tell the blade count; give --blades)")
     else:
-        measured = Measured(rate)
+        measured = Measured(rate, OK, turn_note)
     return Rotation(chopping, measured, rates, blades, source)
+
+
+def _turn_comb(chopping_hz, *, n_blades):
+    """The chopping frequencies of a comb (spacings ``chopping_hz``) whose power repeats twice per spacing
+    (:func:`mdpipe.process.combs.flashes_doubled`), for an even blade count ``n_blades`` given: N equal blades'
+    power repeats once per chopping period, so the comb lines a turn, not the chopping. Two blades: the turn rate,
+    one blade differing, the chopping twice it (an X-band quadrotor seen from 86 deg, one blade 1.3 times the other:
+    a comb at 131 Hz read 65.5 rev/s for 130.5). Four or more: the turn rate or a part of a turn (two opposite
+    blades of four differing repeat twice a turn): withheld as ``ambiguous_period`` (a :class:`Rotation`)."""
+    if n_blades == 2:
+        return 2 * chopping_hz
+    spacing_hz = float(np.median(chopping_hz))
+    note = (f"rotation not estimable: the power repeats twice per spacing of the comb at {spacing_hz:.4g} Hz: with "
+            f"{n_blades} blades given it lines a turn (one blade differing: the chopping {n_blades * spacing_hz:.4g} "
+            f"Hz) or a part of one (the chopping {2 * spacing_hz:.4g} Hz or more)")
+    return Rotation.withheld("ambiguous_period", note)
 
 
 def _comb_multiple(lines, spacing_hz, *, band_hz, dwell_s):
@@ -1507,7 +1538,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     row["stft_window_s"], row["stft_hop_s"] = shown.window_s, shown.hop_s
     notes = [m.note for m in (body.velocity, band.halfwidth, bandwidth, turn.chopping, turn.rate, tip, length, beat,
                               flaps, stroke)
-             if m.note and (m.status != OK or m is body.velocity)]
+             if m.note and (m.status != OK or m is body.velocity or m is turn.rate)]  # (ok: how it was read)
     notes = list(dict.fromkeys(notes))  # one sentence once (blade length and its tip share theirs)
     notes.extend(display_adjustments(params, shown, prf_hz=prf_hz, dwell_s=dwell_s))
     # the edges were read about the body line; the figures show the echo as received
