@@ -859,7 +859,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
 
     turn_note = ""
     if (not aliased and n_blades is not None and n_blades % 2 == 0 and measured_n is None and least_n is None
-            and parity_and_doubling(float(chopping_hz[0]))[1]):
+            and parity_and_doubling(float(chopping_hz[0])) == (None, True)):  # (flashes by turns: an odd N's)
         chopping_hz = _turn_comb(chopping_hz, n_blades=n_blades)
         if isinstance(chopping_hz, Rotation):
             return chopping_hz
