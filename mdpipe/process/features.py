@@ -847,6 +847,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                                          n_blades=n_blades if n_blades is not None else measured_n)
         if chopping_hz is None:
             return held
+
     @functools.cache
     def parity_and_doubling(chop_hz):
         """(parity, doubled) of the flashes on a comb at ``chop_hz``: odd N by their Doppler sides (True: by turns,

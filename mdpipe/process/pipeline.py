@@ -1,7 +1,7 @@
 """One capture from file to feature rows: detect, follow, combine, analyse, classify."""
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -127,13 +127,15 @@ def hub_target(reader, stats, owner, image, process, analyse):
     The hub is followed along the straight line through the midpoints of their tracks
     (:func:`mdpipe.process.selection.straight_track`) where that moves more than ``HUB_FIXED_BINS`` over the dwell,
     else held at its mean: a fixed bin holds a target within half a bin of it."""
-    (first, first_bins, first_visits), (second, second_bins, second_visits) = owner, image
+    (_, first_bins, first_visits), (_, second_bins, second_visits) = owner, image
     line = selection.straight_track((first_bins + second_bins) / 2)
-    held = abs(line[-1] - line[0]) <= HUB_FIXED_BINS * process.zero_pad
     hub_bin = float(line.mean())
-    detection = selection.detection_between(stats, first, second, fixed_bin=hub_bin if held else None,
-                                            range_m=float(ranging.bin_range_m(hub_bin, reader.params, process.zero_pad)))
-    track_bins = np.full_like(line, detection.fixed_bin) if held else line
+    detection = selection.detection_at(stats, hub_bin,
+                                       range_m=float(ranging.bin_range_m(hub_bin, reader.params, process.zero_pad)))
+    if abs(line[-1] - line[0]) > HUB_FIXED_BINS * process.zero_pad:
+        detection, track_bins = replace(detection, fixed_bin=None), line  # followed
+    else:
+        track_bins = np.full_like(line, hub_bin)
     target = target_signals(reader, stats, [(detection, track_bins, first_visits + second_visits)], process)[0]
     return (detection, target, *analyse(detection, target, track_bins))
 

@@ -24,7 +24,7 @@ from mdpipe.errors import ParameterError
 from mdpipe.process.cfar import gamma_isf
 from mdpipe.process.doppler import periodic_hann
 from mdpipe.process.filters import moving_average, running_median
-from mdpipe.process.ranging import bin_range_m, range_response
+from mdpipe.process.ranging import range_response
 
 MIN_SEPARATION_BINS = 3  # Hann main lobe +-2 bins, plus the range-Doppler spread of fast blade tips
 SIDELOBE_DB = 40.0       # peaks this far below the strongest are taken for its range sidelobes
@@ -152,7 +152,6 @@ def detect(stats, test, *, max_targets, zero_pad=1):
     score, power = test.score, stats.gate_moving_power
     if len(score) < 3 or test.noise_cell <= 0:
         return []
-    floor = max(noise_power(stats), np.finfo(float).tiny)
     separation = MIN_SEPARATION_BINS * zero_pad
     found = []
     for index in np.argsort(score)[::-1]:
@@ -167,8 +166,7 @@ def detect(stats, test, *, max_targets, zero_pad=1):
         found.append(index)
         if len(found) == max_targets:
             break
-    return [Detection(int(i), int(stats.gate_bins[i]), float(stats.gate_range_m[i]),
-                      float(10 * np.log10(max(power[i], np.finfo(float).tiny) / floor))) for i in found]
+    return [Detection(int(i), int(stats.gate_bins[i]), float(stats.gate_range_m[i]), _snr_db(stats, i)) for i in found]
 
 
 def manual_detection(stats, range_m, *, gate_m, params, zero_pad=1):
@@ -184,21 +182,20 @@ def manual_detection(stats, range_m, *, gate_m, params, zero_pad=1):
                              "choose a range inside it or move the gate")
     fixed_bin = range_m / (params.range_bin_m / zero_pad)
     index = int(np.clip(np.rint(fixed_bin) - stats.gate_bins[0], 0, len(stats.gate_bins) - 1))
-    power = stats.gate_moving_power
-    floor = max(noise_power(stats), np.finfo(float).tiny)
-    return Detection(index, int(stats.gate_bins[index]), float(range_m),
-                     float(10 * np.log10(max(power[index], np.finfo(float).tiny) / floor)), fixed_bin=float(fixed_bin))
+    return Detection(index, int(stats.gate_bins[index]), float(range_m), _snr_db(stats, index), fixed_bin=float(fixed_bin))
 
 
-def detection_between(stats, first, second, *, range_m, fixed_bin=None):
-    """A detection at ``range_m`` between the detections ``first`` and ``second`` (the hub between a drone's two
-    range-Doppler images): its gate bin the nearer to their middle, its SNR that bin's; held at ``fixed_bin``
-    (padded grid) if given."""
-    index = int(np.floor((first.gate_index + second.gate_index) / 2 + 0.5))
+def detection_at(stats, fixed_bin, *, range_m):
+    """A detection held at ``fixed_bin`` (padded grid, fractional; ``range_m``): its gate bin the nearest, its SNR
+    that bin's (the hub between a drone's two range-Doppler images)."""
+    index = int(np.argmin(np.abs(np.asarray(stats.gate_bins, dtype=float) - fixed_bin)))
+    return Detection(index, int(stats.gate_bins[index]), float(range_m), _snr_db(stats, index), fixed_bin=fixed_bin)
+
+
+def _snr_db(stats, index):
+    """The moving power of gate bin ``index`` over the noise's (:func:`noise_power`), dB."""
     floor = max(noise_power(stats), np.finfo(float).tiny)
-    power = max(float(stats.gate_moving_power[index]), np.finfo(float).tiny)
-    return Detection(index, int(stats.gate_bins[index]), float(range_m), float(10 * np.log10(power / floor)),
-                     fixed_bin=fixed_bin)
+    return float(10 * np.log10(max(float(stats.gate_moving_power[index]), np.finfo(float).tiny) / floor))
 
 
 def straight_track(track_bins):
