@@ -1440,3 +1440,25 @@ def test_four_blades_given_on_a_comb_whose_power_repeats_twice_per_spacing_give_
     held = _turn_comb(np.array([60.0]), n_blades=4)
     assert held.rate.value is None and held.rate.status == "ambiguous_period"
     assert held.chopping.value is None and "240 Hz" in held.chopping.note and "120 Hz" in held.chopping.note
+
+
+def test_flashes_by_turns_at_twice_n_times_a_turn_comb_measure_n(tmp_path):
+    """Four K-band 3-blade quadrotor rotors of point blades 6 % apart, one blade of each 1.34 times the others (the
+    default sweep's scene 39; clutter left out), N not given: the comb lines the turn, 100.4 Hz, every third line
+    standing out; the flash times, 601 Hz, alternate range sides (an odd N flashes 2N times a turn) and the power
+    repeats whole at them. Six flashes a turn on a turn comb whose every third line stands out: N = 3, measured (it
+    was assumed, the rate withheld as `assumed_blades`)."""
+    radar = dict(f_start_hz=24.0e9, f_stop_hz=24.25e9, ramp_up_s=2.08803e-05, chirp_period_s=2.61004e-05,
+                 sample_rate_hz=6130180.128063294, n_samples=128, n_chirps=35396, n_channels=1)
+    rates = [101.283, -99.7016, 99.775, -106.071]
+    quad = {"name": "three_blade_quad", "type": "multirotor", "elevation_deg": 35.1906, "body_rcs_m2": 0.0400219,
+            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 16, "root_m": 0.01,
+                       "phase_deg": [198.025, 205.056, 275.95, 159.403], "blade_rcs_m2": 0.00610551,
+                       "rate_wander_fraction": 0.00977077, "rate_wander_period_s": 1.21791,
+                       "tilt_deg": [4.37951, -2.67049, -1.69218, -3.05647], "blades": 3, "arm_m": 0.391852,
+                       "blade_length_m": 0.211424, "rev_per_s": rates, "blade_gains": [1.0, 1.0, 1.34293]},
+            "motion": {"position_m": [5.76078, -2.73272, 12.0347], "velocity_mps": [-5.03695, 1.66601, 0.0]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=25.2539, seed=1453103525, elevation_deg=35.1906)
+    assert row["n_blades"] == 3 and row["n_blades_source"] == "measured"
+    assert row["rotation_rate_hz_status"] == "ok"
+    assert row["rotation_rate_hz"] == pytest.approx(np.mean(np.abs(rates)), rel=0.02)

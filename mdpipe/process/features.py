@@ -677,7 +677,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     repeats whole (rotors whose lines between the comb's cancel flash a whole number of times per comb period, but
     their power does not repeat whole at the flashes): the flash times stand. Flash times twice a folded comb are an
     odd N (flashing twice per chopping period) or an even N with one blade differing (the comb lines the turn
-    rate): the blade count, given or measured, tells which; without it nothing is reported. A folded comb without
+    rate): the blade count, given or measured, tells which; without it nothing is reported. Flash times alternating
+    range sides (an odd N) at 2k times a folded comb whose every k-th line stands out measure N = k (the comb the turn
+    rate, one blade differing). A folded comb without
     flash times is taken where, N given or measured, the power repeating whole (:func:`_folded_comb_by_power`) or
     one of the two rates a flash-time ambiguity leaves (:func:`_folded_comb_by_flash_times`) confirms it. A
     chopping frequency that rests on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler
@@ -808,6 +810,13 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             if held:
                 return held
             flashes_only = True
+            odd_turn = n_blades is None and alternating and pattern and pattern % 2
+            if odd_turn and _agrees(float(chopping_hz[0]) / centre, pattern):
+                # flashes by turns on the range sides, an odd N's (2N a turn), at twice a chopping that is
+                # ``pattern`` times a comb whose every pattern-th line stands out: the comb lines the turn (one blade
+                # differing) of N = pattern blades (four K-band 3-blade rotors 6 % apart, one blade 1.34 times the
+                # others: a comb at 100.4 Hz, flash times at 601 Hz; N had been assumed)
+                measured_n = pattern
         else:
             note = (f"rotation not estimable: the line comb says {centre:.4g} Hz and the echo's "
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
