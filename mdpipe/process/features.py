@@ -1507,17 +1507,16 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     else:
         dwell = functools.cache(lambda: dwell_frames(body.demodulated, prf_hz=prf_hz, noise_power=noise_power))
         reach = functools.cache(lambda: _wing_reach_mps(dwell(), prf_hz=prf_hz, wavelength_m=wavelength_m))
-        beat = wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
-                                   band_hz=2 * band.half_width_hz), band.halfwidth, body.velocity, dwell_s=dwell_s,
-                     reach_mps=reach)
+        as_wings = functools.partial(wings, halfwidth=band.halfwidth, body_velocity=body.velocity, dwell_s=dwell_s,
+                                     reach_mps=reach)  # each measurement of wings, held to the spread of wings
+        beat = as_wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
+                                      band_hz=2 * band.half_width_hz))
         flaps = flapping(dwell())
-        flaps = wings(flaps, band.halfwidth, body.velocity, dwell_s=dwell_s, reach_mps=reach,
-                      described=flaps.value is not None and f"a micro-Doppler in bursts over {flaps.value:.0%} of the "
-                      "dwell, dark between them,")
+        flaps = as_wings(flaps, described=flaps.value is not None and f"a micro-Doppler in bursts over "
+                         f"{flaps.value:.0%} of the dwell, dark between them,")
         stroke = wing_stroke(dwell, body_velocity=body.velocity, dwell_s=dwell_s)
-        stroke = wings(stroke, band.halfwidth, body.velocity, dwell_s=dwell_s, reach_mps=reach,
-                       described=stroke.value is not None and f"a micro-Doppler whose reach swings {stroke.value:.0%} "
-                       "of its greatest over the dwell")
+        stroke = as_wings(stroke, described=stroke.value is not None and f"a micro-Doppler whose reach swings "
+                          f"{stroke.value:.0%} of its greatest over the dwell")
         if wings_may_repeat:
             turn, beating = _wings_over_ambiguous_period(turn, beat, body_velocity=body.velocity, dwell_s=dwell_s,
                                                          reach_mps=reach)
