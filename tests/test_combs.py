@@ -123,3 +123,29 @@ def test_blade_parity_from_the_sides_the_flashes_fall_on(delay, odd):
     signal, prf_hz, chopping_hz = _flash_train(receding_delay=delay, receding_share=0.5)
     assert combs.odd_blades(signal, chopping_hz, prf_hz=prf_hz, half_width_hz=6000.0) is odd
     assert combs.flashes_doubled(signal, chopping_hz, prf_hz=prf_hz, half_width_hz=6000.0) is False
+
+
+
+def _skirt(lines_db=None, *, spacing_hz=30.0, n=8192, prf_hz=8192.0):
+    """Scores of a skirt falling away from 0 Hz (60 dB over the noise there, 3.3 dB less every 10 Hz out, a small
+    ripple on it), with lines ``lines_db`` over it at +-k ``spacing_hz`` if given."""
+    f_hz = np.fft.fftfreq(n, 1.0 / prf_hz)
+    power = 1e6 * np.exp(-np.abs(f_hz) / 13.0) * (1.0 + 0.2 * np.cos(2 * np.pi * f_hz / 7.3))
+    if lines_db is not None:
+        on_line = np.abs(f_hz / spacing_hz - np.round(f_hz / spacing_hz)) * spacing_hz < prf_hz / n / 2
+        power = np.where(on_line & (f_hz != 0), power * 10 ** (lines_db / 10), power)
+    return combs.LineSpectrum(score=np.log1p(power), prf_hz=prf_hz)
+
+
+def test_a_band_falling_away_from_the_body_line_is_no_comb():
+    """On a skirt each position stands over the one half a spacing beyond it: the contrast against the outer
+    half-way points reads a comb (t over COMB_T), that against the inner ones falls as much (t under -COMB_T): no
+    lines. The same skirt with lines 20 dB over it at the spacing: they stand over both neighbours."""
+    skirt = _skirt()
+    comb = _candidate(skirt, 30.0, 100.0)
+    assert comb.t >= combs.COMB_T
+    inner = combs.comb_statistics(skirt, 30.0, half_width_hz=100.0, limit=comb.orders, offset=-0.5)[1][0]
+    assert inner <= -combs.COMB_T
+    assert not combs._stands_on_both_sides(skirt, comb, half_width_hz=100.0)
+    lines = _skirt(20.0)
+    assert combs._stands_on_both_sides(lines, _candidate(lines, 30.0, 100.0), half_width_hz=100.0)
