@@ -125,7 +125,6 @@ def test_blade_parity_from_the_sides_the_flashes_fall_on(delay, odd):
     assert combs.flashes_doubled(signal, chopping_hz, prf_hz=prf_hz, half_width_hz=6000.0) is False
 
 
-
 def _skirt(lines_db=None, *, spacing_hz=30.0, n=8192, prf_hz=8192.0):
     """Scores of a skirt falling away from 0 Hz (60 dB over the noise there, 3.3 dB less every 10 Hz out, a small
     ripple on it), with lines ``lines_db`` over it at +-k ``spacing_hz`` if given."""

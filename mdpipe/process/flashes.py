@@ -41,7 +41,7 @@ POWER_SIGMAS = 6.0          # the power's autocorrelation peak over its median i
                             # of a power correlated over the lags below them (Bartlett)
 POWER_BASELINE = 0.1        # ... standing on an autocorrelation this close to 0 (the power between flashes is
                             # uncorrelated)
-AROUND_PERIOD = 0.5          # ... and over the median of the lags within this share of a period of its own
+AROUND_PERIOD = 0.5         # ... and over the median of the lags within this share of a period of its own
 POWER_PEAK_WIDTH = 0.2      # ... and no wider at half its prominence than this share of its lag: flashes are short
 POWER_RECUR_SHARE = 0.25    # ... recurring at 2T and 3T with this share of its prominence: six flash trains whose
                             # phases drift apart smear the recurrences (0.76, 0.42, 0.27 for a 77 GHz hexarotor)
