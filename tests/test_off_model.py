@@ -781,6 +781,24 @@ def test_a_pattern_spreading_like_slow_wings_on_a_still_body_is_no_bird():
     assert wings(beat, spread, Measured(0.004), dwell_s=2.5, reach_mps=lambda: 0.9).status == "not_applicable"
 
 
+
+def test_flashes_of_an_ambiguous_period_in_an_echo_beating_like_wings_are_no_rotor():
+    """Blade flashes of an ambiguous period (a rotor's evidence) are refused where the echo beats like wings and its
+    faint rows end within the reach of wings: a bird of the independent simulator flying 8.2 m/s, beating 12.1 Hz,
+    its rows ending 3.2 m/s from its body line (blade tips light them out to tens of m/s). Rows reaching 30 m/s, or a
+    beat that is no wings', leave the flashes a rotor's."""
+    from mdpipe.process.features import Rotation, _wings_over_ambiguous_period
+    from mdpipe.process.validity import Measured, withheld
+    turn = Rotation.withheld("ambiguous_period", "rotation not estimable: flashes of an ambiguous period")
+    beat, flying = Measured(12.1), Measured(8.2)
+    refused, beating = _wings_over_ambiguous_period(turn, beat, body_velocity=flying, dwell_s=1.0,
+                                                    reach_mps=lambda: 3.2)
+    assert beating and refused.rate.status == "not_rotor" and refused.chopping.status == "not_rotor"
+    assert _wings_over_ambiguous_period(turn, beat, body_velocity=flying, dwell_s=1.0, reach_mps=lambda: 30.0) == (
+        turn, False)
+    assert _wings_over_ambiguous_period(turn, withheld("no_wingbeat", ""), body_velocity=flying, dwell_s=1.0,
+                                        reach_mps=lambda: 3.2) == (turn, False)
+
 K_BAND_GOOSE = dict(f_start_hz=24.0e9, f_stop_hz=24.1e9, ramp_up_s=244.722e-6, chirp_period_s=305.903e-6,
                     sample_rate_hz=523042.4732063321, n_samples=128, n_chirps=7853, n_channels=1)
 W94_GOOSE = dict(f_start_hz=94.0e9, f_stop_hz=94.1e9, ramp_up_s=180.547e-6, chirp_period_s=225.684e-6,

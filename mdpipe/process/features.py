@@ -1393,7 +1393,9 @@ def _wings_over_ambiguous_period(turn, beat, *, body_velocity, dwell_s, reach_mp
     ``DRONE_SPREAD_MPS``). Blade tips move at 20-150 m/s and light the rows of an unaliased band out to their Doppler,
     even flashing a few dB over the noise (the drones of three benchmarks whose flashes' period was ambiguous and whose
     reach was read: 24-208 m/s); a bird's power may repeat in part as its wing and body lines beat (four birds of
-    7-14 Hz wingbeats at X, 77 and 94 GHz, flying 8-15 m/s: every 0.9-3.7 ms, their rows reaching 1.2-3.2 m/s).
+    7-14 Hz wingbeats at X, 77 and 94 GHz, flying 8-15 m/s: every 0.9-3.7 ms, their rows reaching 1.2-3.2 m/s; those
+    repeats have since stopped counting as flashes: none stands over the lags about its own,
+    :func:`~mdpipe.process.flashes.power_period`).
     A wingbeat read an octave apart (``ambiguous_period``, :class:`~mdpipe.process.wingbeat.Octave`) counts: a
     wing-like beat either way. Returns the rotation and whether the beat stands."""
     if beat.value is None or not _within_wing_reach(reach_mps(), _least_wing_spread_mps(body_velocity,
