@@ -16,7 +16,7 @@ from mdpipe.physics.radar import range_rate_from_doppler_mps
 from mdpipe.process import combs, doppler, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
-from mdpipe.process.filters import moving_average, running_median
+from mdpipe.process.filters import least_squares_line, moving_average, running_median
 from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period, on_chirp_grid, power_period,
                                     ramp_readable, ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
@@ -167,7 +167,7 @@ class RangeTrack:
         """The rms distance (bins) of the track from its least-squares line (0 for fewer than three points)."""
         if len(self.t_s) < 3:
             return 0.0
-        line = np.polyval(np.polyfit(self.t_s, self.range_m, 1), self.t_s)
+        line = least_squares_line(self.t_s, self.range_m)
         return float(np.sqrt(np.mean((self.range_m - line) ** 2)) / self.bin_m)
 
 

@@ -60,6 +60,11 @@ def robust_sigma(values):
     return 1.4826 * np.median(np.abs(values - np.median(values)))
 
 
+def least_squares_line(x, y):
+    """The least-squares straight line through the points ``(x, y)``, at ``x``."""
+    return np.polyval(np.polyfit(x, y, 1), x)
+
+
 def parabolic_offset(left, mid, right):
     """Where, within +-0.5 sample of ``mid``, the parabola through three equally spaced values peaks; 0 where
     they do not curve down (a slope or a plateau). Elementwise.

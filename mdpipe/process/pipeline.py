@@ -11,6 +11,7 @@ from mdpipe.io import open_capture
 from mdpipe.process import flashes, images, interference, memory, ranging, saturation, selection
 from mdpipe.process.classify import classify
 from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analyse_target
+from mdpipe.process.filters import least_squares_line
 
 MIN_CHIRPS = 64
 TRACK_POINTS = 256  # range track points kept per target (for its range rate and extent)
@@ -124,11 +125,12 @@ def hub_target(reader, stats, owner, image, process, analyse):
 
     Each image's track follows its own side's flashes as they brighten and fade (the two images of a hovering 3-blade
     quadrotor at 94 GHz drifted 0.9 bin over 0.55 s), and a track that wanders splatters the slow time's spectrum.
-    The hub is followed along the straight line through the midpoints of their tracks
-    (:func:`mdpipe.process.selection.straight_track`) where that moves more than ``HUB_FIXED_BINS`` over the dwell,
-    else held at its mean: a fixed bin holds a target within half a bin of it."""
+    The hub is followed along the least-squares straight line through the midpoints of their tracks (a constant range
+    rate) where that moves more than ``HUB_FIXED_BINS`` over the dwell, else held at its mean: a fixed bin holds a
+    target within half a bin of it."""
     (_, first_bins, first_visits), (_, second_bins, second_visits) = owner, image
-    line = selection.straight_track((first_bins + second_bins) / 2)
+    midpoints = (first_bins + second_bins) / 2
+    line = least_squares_line(np.arange(len(midpoints), dtype=np.float64), midpoints)
     hub_bin = float(line.mean())
     detection = selection.detection_at(stats, hub_bin,
                                        range_m=float(ranging.bin_range_m(hub_bin, reader.params, process.zero_pad)))

@@ -198,12 +198,6 @@ def _snr_db(stats, index):
     return float(10 * np.log10(max(float(stats.gate_moving_power[index]), np.finfo(float).tiny) / floor))
 
 
-def straight_track(track_bins):
-    """The least-squares straight line through a per-chirp track (bins): a drone's hub at a constant range rate."""
-    chirps = np.arange(len(track_bins), dtype=np.float64)
-    slope, intercept = np.polyfit(chirps, track_bins, 1)
-    return intercept + slope * chirps
-
 
 def channel_weights(covariance):
     """Coherent combining toward the target: the dominant eigenvector of each bin's moving covariance.

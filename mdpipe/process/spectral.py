@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mdpipe.process.doppler import noise_level_per_bin, spectrogram
-from mdpipe.process.filters import moving_average, robust_sigma
+from mdpipe.process.filters import least_squares_line, moving_average, robust_sigma
 
 OCCUPIED_DB = 10.0        # micro-Doppler "present" this far above the noise level (smoothed) ...
 LINE_DB = 15.0            # ... or in a single bin this far above it (noise: once in 5e13 bins)
@@ -142,7 +142,7 @@ def plateau_ripple(column, f_hz, edge_hz):
     if inner.sum() < 8:
         return 0.0
     amplitude = np.sqrt(np.maximum(np.nan_to_num(column[inner]), 0.0))
-    line = np.polyval(np.polyfit(f_hz[inner], amplitude, 1), f_hz[inner])
+    line = least_squares_line(f_hz[inner], amplitude)
     level = float(np.mean(line))
     return float(np.sqrt(np.mean((amplitude - line) ** 2)) / level) if level > 0 else 0.0
 
