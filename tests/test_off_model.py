@@ -1522,7 +1522,8 @@ def test_four_blades_given_on_a_comb_whose_power_repeats_twice_per_spacing_give_
     """Four equal blades' power repeats once per chopping period; twice per comb spacing, the comb lines a turn (one
     blade differing, the chopping 4 times it) or half a turn (two opposite blades differing, twice it): withheld."""
     from mdpipe.process.features import _turn_comb
-    assert np.allclose(_turn_comb(np.array([60.0, 61.0]), n_blades=2), [120.0, 122.0])
+    chopping_hz, note = _turn_comb(np.array([60.0, 61.0]), n_blades=2)
+    assert np.allclose(chopping_hz, [120.0, 122.0]) and "lines the turn rate" in note
     held = _turn_comb(np.array([60.0]), n_blades=4)
     assert held.rate.value is None and held.rate.status == "ambiguous_period"
     assert held.chopping.value is None and "240 Hz" in held.chopping.note and "120 Hz" in held.chopping.note

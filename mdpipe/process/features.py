@@ -870,11 +870,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     turn_note = ""
     if (not aliased and n_blades is not None and n_blades % 2 == 0 and measured_n is None and least_n is None
             and parity_and_doubling(float(chopping_hz[0])) == (None, True)):  # (flashes by turns: an odd N's)
-        chopping_hz = _turn_comb(chopping_hz, n_blades=n_blades)
-        if isinstance(chopping_hz, Rotation):
-            return chopping_hz
-        turn_note = (f"the power repeats twice per spacing of the comb at {chopping_hz[0] / 2:.4g} Hz: with 2 blades "
-                     "given, it lines the turn rate (one blade differing), and the chopping is twice it")
+        turned = _turn_comb(chopping_hz, n_blades=n_blades)
+        if isinstance(turned, Rotation):
+            return turned
+        chopping_hz, turn_note = turned
     least_mps = least_tip_speed_mps(float(chopping_hz.max()), n_blades=n_blades, elevation_deg=elevation_deg)
     if not aliased and halfwidth_mps is not None and halfwidth_mps < least_mps:
         weak = _power_flashes(power(), n_blades=n_blades, alternate=alternate)
@@ -932,9 +931,12 @@ def _turn_comb(chopping_hz, *, n_blades):
     power repeats once per chopping period, so the comb lines a turn, not the chopping. Two blades: the turn rate,
     one blade differing, the chopping twice it (an X-band quadrotor seen from 86 deg, one blade 1.3 times the other:
     a comb at 131 Hz read 65.5 rev/s for 130.5). Four or more: the turn rate or a part of a turn (two opposite
-    blades of four differing repeat twice a turn): withheld as ``ambiguous_period`` (a :class:`Rotation`)."""
+    blades of four differing repeat twice a turn): withheld as ``ambiguous_period`` (a :class:`Rotation`). Returns
+    the Rotation withheld, or the chopping frequencies and the note that says how they were read."""
     if n_blades == 2:
-        return 2 * chopping_hz
+        return 2 * chopping_hz, (f"the power repeats twice per spacing of the comb at {chopping_hz[0]:.4g} Hz: with 2 "
+                                 "blades given, it lines the turn rate (one blade differing), and the chopping is "
+                                 "twice it")
     spacing_hz = float(np.median(chopping_hz))
     note = (f"rotation not estimable: the power repeats twice per spacing of the comb at {spacing_hz:.4g} Hz: with "
             f"{n_blades} blades given it lines a turn (one blade differing: the chopping {n_blades * spacing_hz:.4g} "
