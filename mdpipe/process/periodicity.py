@@ -102,18 +102,20 @@ def find_period(signal, *, sample_rate_hz, min_period_s, max_period_s):
                                        min_period_s=min_period_s, max_period_s=max_period_s)
 
 
-def lag_range(n, *, sample_rate_hz, min_period_s, max_period_s):
+def lag_range(n, *, sample_rate_hz, min_period_s, max_period_s, max_lag=None):
     """The lags ``lo .. hi - 1`` (samples) searched for a period in an autocorrelation of ``n`` lags: from
-    ``min_period_s`` (2 at least) to ``max_period_s`` or half the record (two repeats at least)."""
-    return max(2, int(np.ceil(min_period_s * sample_rate_hz))), min(int(max_period_s * sample_rate_hz), n // 2)
+    ``min_period_s`` (2 at least) to ``max_period_s`` or ``max_lag`` (by default half the record: two repeats at
+    least)."""
+    return (max(2, int(np.ceil(min_period_s * sample_rate_hz))),
+            min(int(max_period_s * sample_rate_hz), n // 2 if max_lag is None else max_lag))
 
 
 def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s, repeat_share=0.5,
-                                recur_share=REPEAT_SHARE, max_order=3):
+                                recur_share=REPEAT_SHARE, max_order=3, max_lag=None):
     """The fundamental period in a normalised autocorrelation ``r`` (lag 0 first).
 
-    Lags up to half the record are searched (two repeats at least). Strength is the peak's height
-    above the running minimum over one shortest candidate period (a baseline that the decay of a
+    Lags up to half the record are searched (two repeats at least), or below ``max_lag`` where given. Strength is
+    the peak's height above the running minimum over one shortest candidate period (a baseline that the decay of a
     broadband echo does not raise). Repeats at k T are looked for, and the period refined on them,
     at lags below ``repeat_share`` of the record (an unbiased autocorrelation at lag L rests on
     ``n - L`` products); a peak at 2T (and up to ``max_order`` T) must stand with ``recur_share`` of T's
@@ -121,7 +123,8 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
     With ``repeat_share`` above 1/2 a period whose double lies beyond it (two or fewer periods in the
     record) is kept with ``repeats = 1``: the caller decides on its strength.
     """
-    lo, hi = lag_range(len(r), sample_rate_hz=sample_rate_hz, min_period_s=min_period_s, max_period_s=max_period_s)
+    lo, hi = lag_range(len(r), sample_rate_hz=sample_rate_hz, min_period_s=min_period_s, max_period_s=max_period_s,
+                       max_lag=max_lag)
     if hi <= lo + 2:
         return None
     baseline = running_min(r, 2 * lo + 1)
