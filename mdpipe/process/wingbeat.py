@@ -239,6 +239,7 @@ def _period(r, *, frame_rate, frames_per_window):
 
     found = up_to(1.0 / MIN_WINGBEAT_HZ)
     if found is None or found.strength < MIN_PERIODICITY:
+        # the lags run to the dwell's half and one past: a peak at the half shows only against the lag past it
         found = up_to(1.0 / MIN_WINGBEAT_HZ, max_lag=dwell_half_lag + 2) or found
     if found is not None and found.repeats == 1:
         shorter = up_to(SHORTER_SHARE * found.period_s)
