@@ -1057,9 +1057,9 @@ def test_a_crow_whose_power_correlates_slowly_shows_no_blade_flashes(tmp_path):
 
 def test_a_gull_beating_twice_in_the_dwell_is_read(tmp_path):
     """A gull at K band, 10 m out, beating 3.01 Hz for 0.706 s, 2.1 beats (a scene of the held-out bird sweep, with
-    its clutter): the period lay a lag beyond the half of the frames' record, the last lag searched (a frame
-    shorter than the dwell), and no wingbeat was read: `none` (old code). Now searched to the dwell's half: a bird,
-    its wingbeat within 3 % (1.6 % slow, a single repeat)."""
+    its clutter): the period peaked at the half of the frames' record (their centres span a frame less than the
+    dwell), a lag past the last lag searched, and no wingbeat was read: `none` (old code). Now searched to the
+    dwell's half: a bird, its wingbeat within 3 % (1.6 % slow, a single repeat)."""
     radar = dict(f_start_hz=24.0e9, f_stop_hz=24.1e9, ramp_up_s=24.4517e-6, chirp_period_s=30.5646e-6,
                  sample_rate_hz=5234809.854856718, n_samples=128, n_chirps=23088, n_channels=2)
     gull = {"name": "gull", "type": "bird", "a1_deg": 46.4839, "a2_deg": 34.3624, "wingbeat_drift_fraction": 0.0198609,

@@ -35,9 +35,9 @@ def test_a_peak_whose_vertex_lies_below_the_shortest_period_is_not_one():
 
 
 def test_lags_searched_past_half_the_record_only_where_asked():
-    """A period of 51.5 samples in 100 lags: its peak (lag 51 or 52) lies past half the record, the last lag
-    searched by default, and no period is found; with ``max_lag`` 54 the lags run past it, and it is found once (its
-    double lies past ``repeat_share``: one repeat)."""
+    """A period of 51.5 samples in 100 lags: its peak (lag 51 or 52) lies past half the record (lags up to 49
+    searched by default, a peak found up to 48), and no period is found; with ``max_lag`` 54 the lags run past it,
+    and it is found once (its double lies past ``repeat_share``: one repeat)."""
     r = cosine_autocorrelation(51.5, n=100)
     kwargs = dict(sample_rate_hz=1.0, min_period_s=2.0, max_period_s=80.0, repeat_share=0.8)
     assert period_from_autocorrelation(r, **kwargs) is None

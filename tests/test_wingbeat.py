@@ -302,10 +302,10 @@ def test_a_body_line_alone_shows_no_weak_wings(body_cell_db):
 
 @pytest.mark.parametrize("seed", [0, 1, 2, 3])
 def test_two_wingbeats_in_the_dwell_are_read(seed):
-    """Wings beating 3 Hz for 0.70 s, 2.1 beats, in 64 ms frames (hop 16 ms): the frames' record spans 0.688 s, 40
-    frames, and its half (20 lags) falls short of the period (20.8 lags); searched to it, no wingbeat (old code).
-    The lags now run to the dwell's half and one past: the period is read, a single repeat, within 3 % (1.3-2.3 %
-    slow, its peak among the last lags of the unbiased autocorrelation)."""
+    """Wings beating 3 Hz for 0.70 s, 2.1 beats, in 64 ms frames (hop 16 ms): 40 frames, their centres 0.624 s
+    apart; half the record (20 lags) falls short of the period (20.8 lags): searched to it, no wingbeat (old code).
+    The lags now run to the dwell's half and one past: the period is read, a single repeat, within 3 % (1.5-2.3 %
+    slow: a single repeat's peak, read on few pairs)."""
     echo = weak_wings_echo(wing_cell_db=20.0, body_cell_db=30.0, dwell_s=0.70, seed=seed)
     found = wingbeat.wingbeat(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0)
     assert found is not None and found.repeats == 1
