@@ -226,12 +226,14 @@ def _period(r, *, frame_rate, frames_per_window):
     Periods up to half the record are searched (two wingbeats in it), and where none is found (or none as strong
     as ``MIN_PERIODICITY``), up to half the dwell and a lag past it: the frames' centres span a frame less than the
     dwell, and a peak shows only with a lag beyond it (a gull beating 3.01 Hz for 0.706 s at K band, in 35 ms
-    frames, peaked at the record's half, a lag past the last lag searched, and read no wingbeat). Only then: the
-    peaks of the lags added may outshine a shorter period's and change the look's choice (searched so wherever, a
-    quadrotor seen face-on, its rows repeating at 13.1 Hz in the first look, read 13.0 Hz in the look that confirms
-    so short a period, where it had read 16.2 Hz and none was taken: `bird` for `none`).
+    frames, peaked at the record's half, a lag past the last lag searched, and read no wingbeat). A period found there
+    that its parabola refines past half the dwell is none: the dwell holds under two beats of it (a gull beating
+    3.22 Hz seen 0.616 s, 1.98 beats, was read at 3.24 Hz). Only then: the peaks of the lags
+    added may outshine a shorter period's and change the look's choice (searched so wherever, a quadrotor seen
+    face-on, its rows repeating at 13.1 Hz in the first look, read 13.0 Hz in the look that confirms so short a
+    period, where it had read 16.2 Hz and none was taken: `bird` for `none`).
     """
-    dwell_half_lag = (len(r) - 1 + frames_per_window) // 2  # the record spans n - 1 hops and a window
+    dwell_lags = len(r) - 1 + frames_per_window  # the record spans n - 1 hops and a window
 
     def up_to(max_period_s, max_lag=None):
         return period_from_autocorrelation(r, sample_rate_hz=frame_rate, min_period_s=1.0 / MAX_WINGBEAT_HZ,
@@ -240,7 +242,9 @@ def _period(r, *, frame_rate, frames_per_window):
     found = up_to(1.0 / MIN_WINGBEAT_HZ)
     if found is None or found.strength < MIN_PERIODICITY:
         # the lags run to the dwell's half and one past: a peak at the half shows only against the lag past it
-        found = up_to(1.0 / MIN_WINGBEAT_HZ, max_lag=min(dwell_half_lag + 2, len(r))) or found
+        wide = up_to(1.0 / MIN_WINGBEAT_HZ, max_lag=min(dwell_lags // 2 + 2, len(r)))
+        if wide is not None and wide.period_s * frame_rate <= dwell_lags / 2:  # refined, it may pass the half
+            found = wide
     if found is not None and found.repeats == 1:
         shorter = up_to(SHORTER_SHARE * found.period_s)
         if shorter is not None and shorter.repeats >= 2 and shorter.strength >= MIN_PERIODICITY:
