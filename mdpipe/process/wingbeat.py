@@ -223,15 +223,15 @@ def _period(r, *, frame_rate, frames_per_window):
     hops long: a single-repeat period gives way to a shorter one, up to ``SHORTER_SHARE`` of it, seen to repeat
     with ``MIN_PERIODICITY``.
 
-    Periods up to half the record are searched (two wingbeats in it), and where none is found (or none as strong
-    as ``MIN_PERIODICITY``), up to half the dwell and a lag past it: the frames' centres span a frame less than the
-    dwell, and a peak shows only with a lag beyond it (a gull beating 3.01 Hz for 0.706 s at K band, in 35 ms
-    frames, peaked at the record's half, a lag past the last lag searched, and read no wingbeat). A period found there
-    that its parabola refines past half the dwell is none: the dwell holds under two beats of it (a gull beating
-    3.22 Hz seen 0.616 s, 1.98 beats, was read at 3.24 Hz). Only then: the peaks of the lags
-    added may outshine a shorter period's and change the look's choice (searched so wherever, a quadrotor seen
-    face-on, its rows repeating at 13.1 Hz in the first look, read 13.0 Hz in the look that confirms so short a
-    period, where it had read 16.2 Hz and none was taken: `bird` for `none`).
+    Periods up to half the record are searched (two wingbeats in it). Where none is found there, or none as strong
+    as ``MIN_PERIODICITY``, the lags run on to half the dwell and a lag past it: the frames' centres span a frame
+    less than the dwell, and a peak shows only with a lag beyond it (a gull beating 3.01 Hz for 0.706 s at K band,
+    in 35 ms frames, peaked at the record's half, a lag past the last lag searched, and read no wingbeat). Only
+    there: the peaks of the lags added may outshine a shorter period's and change the look's choice (searched so
+    wherever, a quadrotor seen face-on, its rows repeating at 13.1 Hz in the first look, read 13.0 Hz in the look
+    that confirms so short a period, where it had read 16.2 Hz and none was taken: `bird` for `none`). A period
+    found so whose parabola refines it past half the dwell is none: the dwell holds under two beats of it (a gull
+    beating 3.22 Hz seen 0.616 s, 1.98 beats, was read at 3.24 Hz).
     """
     dwell_lags = len(r) - 1 + frames_per_window  # the record spans n - 1 hops and a window
 
