@@ -54,6 +54,9 @@ ROTOR_TILT_DEG = 5.0         # a rotor disc may tilt this far from the drone's e
 TILT_TOLERANCE = 0.03        # blade length ok only where that tilt moves cos(beta) by at most this share
 ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the brightest frames fill the span
 TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
+DRIFTING_REPEAT = 0.6        # rotors at one rate repeat their echo each turn as one rotor does (0.86-0.99 of the
+                             # signal's power); under this share they drift through each other's phases
+HANN_LOBE_BINS = 2.0         # a line reaches this many bins either side of it (a Hann window's main lobe)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 WIDE_BAND_SHARE = 0.75       # an unaliased band over this share of the span decorrelates within a chirp
 MAX_RAMP_DIVISOR = 6         # a power period not whole within the ramp: its halves to sixths are tried there
@@ -677,7 +680,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     repeats whole (rotors whose lines between the comb's cancel flash a whole number of times per comb period, but
     their power does not repeat whole at the flashes): the flash times stand. Flash times twice a folded comb are an
     odd N (flashing twice per chopping period) or an even N with one blade differing (the comb lines the turn
-    rate): the blade count, given or measured, tells which; without it nothing is reported. Flash times alternating
+    rate): the blade count, given or measured, tells which, or every second line of the comb standing out (a turn of
+    2 blades, one differing; not where the chopping comb folded once falls on the comb's odd orders,
+    :func:`_folds_onto_odd_orders`); without them nothing is reported. Flash times alternating
     range sides (an odd N) at 2k times a folded comb whose every k-th line stands out measure N = k (the comb the turn
     rate, one blade differing). A folded comb without
     flash times is taken where, N given or measured, the power repeating whole (:func:`_folded_comb_by_power`) or
@@ -685,9 +690,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     chopping frequency that rests on an assumed blade parity carries ``assumed_blades``. A comb narrower in Doppler
     than any blade turning that fast could make at the elevation given (:func:`least_tip_speed_mps`) is not a rotor.
     A comb whose every k-th line stands out, read neither as a turn (blade count given or measured, see
-    :func:`_comb_blades`) nor by the echo's rate, is a turn of k blades (one differing, the chopping k times the
-    spacing) or rotors at one rate cancelling the lines between (the chopping the spacing): withheld as
-    ``ambiguous_period`` (four 4-blade rotors 78-82 rev/s apart, unresolved in 0.1 s, read 78 Hz for 321).
+    :func:`_comb_blades`: among others, rotors drifting apart on a comb that stands for them) nor by the echo's rate,
+    is a turn of k blades (one differing, the chopping k times the spacing) or rotors at one rate cancelling the lines
+    between (the chopping the spacing): withheld as ``ambiguous_period`` (four 4-blade rotors 78-82 rev/s apart,
+    unresolved in 0.1 s, read 78 Hz for 321).
     An aliased comb spacing or flash rate that is the PRF over a whole number, which the power's period does not
     settle, is withheld as ``ambiguous_period`` (:func:`_span_ambiguity`: its multiples fold onto it).
     Blade count ``n_blades`` given, or (None) measured from the echo where it tells (imbalance lines), else
@@ -767,7 +773,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
 
     if comb is not None:
         chopping_hz, measured_n, pattern = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
-                                                        band_hz=count_band_hz, n_blades=n_blades, power=power)
+                                                        band_hz=count_band_hz, n_blades=n_blades, power=power,
+                                                        noise_power=noise_power)
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
         ratio = timed_hz / centre
@@ -777,6 +784,11 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             known = n_blades if n_blades is not None else measured_n
             if known is None and alternate(1.0 / timed_hz):  # the flashes alternate range sides: an odd N
                 known, alternating = ASSUMED_ODD_BLADES, True
+            if known is None and pattern == 2 and not _folds_onto_odd_orders(float(chopping_hz[0]), prf_hz=prf_hz,
+                                                                             dwell_s=dwell_s):
+                # every second line of the comb stands out: the turn of 2 blades, one differing, which flash together
+                # twice a turn (the flash times); an odd N's equal blades line their chopping comb without that step
+                known = measured_n = 2
             if known is None:
                 note = (f"rotation not estimable: the flash times say {timed_hz:.4g} Hz and the line comb {centre:.4g} "
                         "Hz: an odd blade count flashes twice per chopping period, an even one with a blade differing "
@@ -1123,7 +1135,8 @@ def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz, max
     return comb, extent_hz
 
 
-def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None, power=lambda: None):
+def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None, power=lambda: None,
+                 noise_power=0.0):
     """Chopping frequencies from comb spacings, the blade count where the line pattern tells it, and that
     pattern (the N of the first comb's every N-th line standing out, confirmed or not; None without one).
 
@@ -1131,7 +1144,9 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     its chopping frequency is N times the spacing. A comb with weaker lines between its lines is the
     chopping comb of such a rotor. Either way N is measured. A pattern of every N-th line is confirmed by
     N given, by the same pattern on a further rotor's comb resolved at another rate
-    (:func:`_pattern_on_rotors_apart`), by the echo repeating each 1/N turn, or by the echo's power (``power()``, a
+    (:func:`_pattern_on_rotors_apart`), by the echo repeating each 1/N turn, by rotors drifting apart on one comb that
+    stands for them (:func:`_rotors_drift_on_comb`, unfolded combs; ``noise_power`` per chirp), or by the echo's
+    power (``power()``, a
     :class:`~mdpipe.process.flashes.PowerPeriod` or None) flashing as N blades turning at the comb's rate
     do, when that is more than twice per spacing (N > 2: a comb of equal blades at the chopping frequency
     flashes once or twice per spacing, as two blades turning at it do; :func:`_power_flashes_as`). Folded
@@ -1163,7 +1178,45 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
         sub, whole = best_near(r, turn / pattern, half_width=2), best_near(r, turn, half_width=2)
         if sub >= TAGGED_REPEAT and whole > sub:
             return spacing_hz * pattern, pattern, pattern
+        if _rotors_drift_on_comb(micro, float(spacing_hz[0]), whole, prf_hz=prf_hz, noise_power=noise_power):
+            return spacing_hz * pattern, pattern, pattern
     return spacing_hz, combs.blade_count_from_sublines(lines, float(spacing_hz[0]), half_width_hz=band_hz), pattern
+
+
+def _rotors_drift_on_comb(micro, spacing_hz, turn_repeat, *, prf_hz, noise_power):
+    """Whether the rotors of one unfolded comb at ``spacing_hz`` turn at rates apart, so that no phases of theirs
+    cancel its lines, and the comb stands for them all.
+
+    Rotors whose phases cancel some of a comb's lines must hold those phases over the dwell: they turn at one rate,
+    and their echo repeats each turn as one rotor's does. Where it repeats (``turn_repeat``, the autocorrelation at
+    a turn) with under ``DRIFTING_REPEAT`` of the signal's power (the noise power per chirp, ``noise_power``, taken
+    out of ``micro``'s), they drift through each other's phases, and a line pattern is their blades': six 2-blade
+    rotors within 0.9 % of 58 rev/s, wandering 2 %, one blade of each 1.87 times the other, repeated each turn with
+    0.47 (the independent simulator's rotors at one rate: 0.86-0.99). The comb's first lines, where rotors a few per
+    cent apart are not resolved, must then centre within ``AGREEMENT`` of it
+    (:func:`mdpipe.process.combs.first_lines_rate_hz`): a comb read over many orders follows the rotor whose lines
+    stand strongest (four 4-blade rotors at 78.2-81.7 rev/s seen 0.1 s: a comb at 78.1 Hz, 2.6 % under their mean, its
+    first lines centring on 80.0 Hz).
+    """
+    power = float(np.mean(np.abs(micro) ** 2))
+    signal_share = 1.0 - noise_power / power if power > 0 else 0.0
+    if not (signal_share > 0 and turn_repeat < DRIFTING_REPEAT * signal_share):
+        return False
+    centre_hz = combs.first_lines_rate_hz(micro, spacing_hz, prf_hz=prf_hz, noise_power=noise_power)
+    return centre_hz is not None and _agrees(centre_hz / spacing_hz)
+
+
+def _folds_onto_odd_orders(spacing_hz, *, prf_hz, dwell_s):
+    """Whether a chopping comb at twice ``spacing_hz``, folded once, falls on the odd orders of the comb at it: the
+    PRF lies within ``HANN_LOBE_BINS`` dwell-spectrum bins (``1 / dwell_s``) of an odd multiple M of ``spacing_hz``,
+    and its m-th line folds to ``(2 m - M)`` times it. Every second line of that comb standing out is then what equal
+    blades' chopping lines show over their own folded ones: four equal 2-blade rotors at 77 GHz, their tips folded
+    twice, the PRF 172.93 times their 135.5 Hz turn (1.5 bins from 173), stepped every second line of a comb at
+    135.5 Hz, and N = 2 was read as measured where the echo does not tell it (4 blades at half the rate look alike).
+    """
+    ratio = prf_hz / spacing_hz
+    nearest_odd = 2 * np.floor(ratio / 2) + 1
+    return bool(abs(ratio - nearest_odd) * spacing_hz * dwell_s < HANN_LOBE_BINS)
 
 
 def _pattern_on_rotors_apart(lines, spacing_hz, pattern, *, band_hz):
