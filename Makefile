@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel readme clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades readme clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -100,6 +100,12 @@ evaluate-heldout-birds-fresh: $(MDPIPE)
 OFFMODEL_DIR ?= $(BENCH_DIR)/mdpipe_offmodel
 offmodel: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_offmodel.py --workdir $(OFFMODEL_DIR) -j 2
+
+# The blade count without --blades on 36 multirotor scenes of that simulator built to read it or to fool it (rotors of
+# unequal blades, odd counts, rotors at one rate phased to cancel lines): captures kept under BLADES_DIR (~3 min).
+BLADES_DIR ?= $(BENCH_DIR)/mdpipe_blade_count
+offmodel-blades: $(MDPIPE)
+	$(BIN)/python benchmarks/bench_blade_count.py --workdir $(BLADES_DIR) -j 2
 
 # Every capture under IN (a folder, searched recursively), processed by JOBS worker processes into OUT
 # (make batch IN=captures OUT=results JOBS=4 ARGS="--blades 3"). Only captures whose input, options or
