@@ -18,7 +18,6 @@ reused (about 3 min with -j 2 to simulate them all).
 """
 
 import argparse
-import os
 import sys
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
@@ -80,13 +79,8 @@ def run_scene(kind, draw, workdir):
     from mdpipe.params import ProcessParams
     from mdpipe.process.pipeline import process_capture
 
-    spec = scene(kind, draw)
-    objects, truth = scenes.build(spec)
     path = Path(workdir) / f"{kind}_{draw}.h5"
-    if not path.exists():
-        partial = path.with_suffix(".part")
-        echo.render(str(partial), spec["radar"], objects, spec["snr"], seed=spec["seed"])
-        os.replace(partial, path)
+    truth = scenes.capture(scene(kind, draw), str(path))
     row = process_capture(str(path), ProcessParams(elevation_deg=truth["beta"])).rows[0]
     keep = ("class", "rotation_rate_hz", "rotation_rate_hz_status", "chopping_freq_hz", "chopping_freq_hz_status",
             "n_blades", "n_blades_source")

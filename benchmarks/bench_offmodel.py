@@ -15,13 +15,11 @@ there is reused (delete them after changing benchmarks/offmodel).
 """
 
 import argparse
-import os
 import sys
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "offmodel"))
-import echo  # noqa: E402
 import scenes  # noqa: E402
 
 TOLERANCE = {"rotation_rate_hz": 0.02, "chopping_freq_hz": 0.02, "blade_length_m": 0.05, "wingbeat_freq_hz": 0.03}
@@ -39,12 +37,8 @@ def run_scene(sid, workdir):
     from mdpipe.process.pipeline import process_capture
 
     scene = scenes.scene(sid)
-    objects, truth = scenes.build(scene)
     path = Path(workdir) / f"s{sid:03d}.h5"
-    if not path.exists():
-        partial = path.with_suffix(".part")
-        echo.render(str(partial), scene["radar"], objects, scene["snr"], seed=scene["seed"])
-        os.replace(partial, path)
+    truth = scenes.capture(scene, str(path))
     given = {}
     if scene["given_blades"]:
         given["n_blades"] = truth["nbl"]

@@ -329,6 +329,17 @@ def build(sc):
     return objs, truth
 
 
+def capture(sc, path):
+    """Scene ``sc`` built, and rendered to ``path`` unless a capture is there already (written under a temporary name,
+    renamed when whole); returns its truth."""
+    objs, truth = build(sc)
+    if not os.path.exists(path):
+        partial = os.path.splitext(path)[0] + ".part"
+        fs_.render(partial, sc["radar"], objs, sc["snr"], seed=sc["seed"])
+        os.replace(partial, path)
+    return truth
+
+
 def describe(sc, truth):
     if sc["kind"] == "drone":
         t = sc["targets"][0]
