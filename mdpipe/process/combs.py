@@ -533,7 +533,8 @@ def odd_orders_stand_out(lines, spacing_hz, *, half_width_hz):
     weaker ones between. Demodulated half a chopping frequency off (no body line marked the hub's Doppler, and a comb
     is as symmetric about the point half-way between two of its lines as about one of them), the chopping lines
     fall at odd multiples of half the chopping frequency, the comb read there (six rotors of an independent
-    simulator, 2 blades given, read at half their rate, `ok`)."""
+    simulator, 2 blades given, read at half their rate, `ok`). Read only on a comb no body line centred: rotors at one
+    rate whose phases cancel their even orders stand so too."""
     found = _multiples_step(lines, spacing_hz, _pattern_orders(spacing_hz, half_width_hz), 2)
     return found is not None and found[0] <= -PATTERN_MARGIN and found[1] <= -SUBLINE_Z
 

@@ -774,7 +774,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     if comb is not None:
         chopping_hz, measured_n, pattern = _comb_blades(micro, lines, np.array(comb), aliased=aliased, prf_hz=prf_hz,
                                                         band_hz=count_band_hz, n_blades=n_blades, power=power,
-                                                        noise_power=noise_power)
+                                                        noise_power=noise_power, on_body=body_found)
     if chopping_hz is not None and timed_hz is not None:
         centre = float(np.median(chopping_hz))
         ratio = timed_hz / centre
@@ -1136,7 +1136,7 @@ def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz, max
 
 
 def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None, power=lambda: None,
-                 noise_power=0.0):
+                 noise_power=0.0, on_body=False):
     """Chopping frequencies from comb spacings, the blade count where the line pattern tells it, and that
     pattern (the N of the first comb's every N-th line standing out, confirmed or not; None without one).
 
@@ -1156,9 +1156,12 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
     combs both show is their blades'; not for a comb on the PRF's grid, :func:`_on_span_grid`, whose folded orders
     beyond the span fall back onto its own and its neighbours'). An unfolded comb whose odd orders stand out is one
     at twice its spacing, read half a spacing off its hub's Doppler
-    (:func:`~mdpipe.process.combs.odd_orders_stand_out`).
+    (:func:`~mdpipe.process.combs.odd_orders_stand_out`), where no body line (``on_body`` False) centred it there.
+    Centred on the body line, it is not: its odd orders stand out where rotors at one rate, phased, cancel the even
+    ones as far as their echoes are alike (an independent simulator's four 2-blade rotors 45 deg apart at 57.3 rev/s,
+    their comb at the chopping, read as one at twice it with weaker lines between: 2 blades at 114.5 rev/s, `ok`).
     """
-    if not aliased and combs.odd_orders_stand_out(lines, float(spacing_hz[0]), half_width_hz=band_hz):
+    if not aliased and not on_body and combs.odd_orders_stand_out(lines, float(spacing_hz[0]), half_width_hz=band_hz):
         spacing_hz = 2 * spacing_hz
     pattern = combs.blade_count_from_line_pattern(lines, float(spacing_hz[0]), half_width_hz=band_hz)
     if pattern and pattern == n_blades and not aliased:
