@@ -164,5 +164,5 @@ def test_the_first_lines_centre_on_the_rotors_mean_rate():
         for k in range(1, orders + 1):
             for sign in (1, -1):
                 signal += np.exp(2j * np.pi * sign * k * rate_hz * t + 1j * rng.uniform(0, 2 * np.pi))
-    rate = combs.first_lines_rate_hz(signal, 78.0, prf_hz=prf_hz, noise_power=0.01)
+    rate = combs.first_lines_rate_hz(combs.line_spectrum(signal, prf_hz=prf_hz, noise_power=0.01), 78.0)
     assert rate == pytest.approx(80.0, rel=0.005)

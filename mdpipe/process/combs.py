@@ -110,9 +110,10 @@ def line_spectrum(signal, *, prf_hz, noise_power, segment_chirps=None, pad=PAD):
     return LineSpectrum(score=np.log1p(power / level), prf_hz=prf_hz)
 
 
-def first_lines_rate_hz(signal, spacing_hz, *, prf_hz, noise_power, orders=2, pad=PAD):
-    """The rate (Hz) the first ``orders`` lines of a comb at ``spacing_hz`` centre on: each line's power-weighted mean
-    frequency over its order (the Hann power over the noise within half a spacing of ``+-k spacing_hz``), averaged
+def first_lines_rate_hz(lines, spacing_hz, *, orders=2):
+    """The rate (Hz) the first ``orders`` lines of a comb at ``spacing_hz`` centre on, read on the line scores
+    ``lines`` (a :class:`LineSpectrum`): each line's mean frequency over its order, weighted by the power over the
+    noise (``exp(score) - 2`` in noise units, where positive) within half a spacing of ``+-k spacing_hz``, averaged
     weighted by the lines' powers; None without power over the noise there.
 
     Rotors turning a few per cent apart overlap within the dwell's resolution at their first orders, which centre on
@@ -120,12 +121,8 @@ def first_lines_rate_hz(signal, spacing_hz, *, prf_hz, noise_power, orders=2, pa
     strongest (four 4-blade rotors at 78.2-81.7 rev/s seen 0.1 s: a comb at 78.1 Hz, its first lines centring on
     80.0 Hz).
     """
-    x = np.asarray(signal, dtype=np.complex128)
-    n = len(x)
-    window = periodic_hann(n)
-    power = np.abs(np.fft.fft(x * window, pad * n)) ** 2 / np.sum(window) ** 2
-    excess = np.clip(power - noise_level_per_bin(noise_power, n), 0.0, None)
-    f_hz = np.fft.fftfreq(pad * n, 1.0 / prf_hz)
+    excess = np.clip(np.expm1(lines.score) - 1.0, 0.0, None)
+    f_hz = np.fft.fftfreq(len(lines.score), 1.0 / lines.prf_hz)
     rates, weights = [], []
     for k in range(1, orders + 1):
         for sign in (1, -1):

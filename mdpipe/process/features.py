@@ -1135,8 +1135,8 @@ def _comb_beyond_band(micro, lines, *, band_hz, prf_hz, noise_power, min_hz, max
     return comb, extent_hz
 
 
-def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades=None, power=lambda: None,
-                 noise_power=0.0, on_body=False):
+def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, noise_power, on_body, n_blades=None,
+                 power=lambda: None):
     """Chopping frequencies from comb spacings, the blade count where the line pattern tells it, and that
     pattern (the N of the first comb's every N-th line standing out, confirmed or not; None without one).
 
@@ -1181,12 +1181,12 @@ def _comb_blades(micro, lines, spacing_hz, *, aliased, prf_hz, band_hz, n_blades
         sub, whole = best_near(r, turn / pattern, half_width=2), best_near(r, turn, half_width=2)
         if sub >= TAGGED_REPEAT and whole > sub:
             return spacing_hz * pattern, pattern, pattern
-        if _rotors_drift_on_comb(micro, float(spacing_hz[0]), whole, prf_hz=prf_hz, noise_power=noise_power):
+        if _rotors_drift_on_comb(micro, lines, float(spacing_hz[0]), whole, noise_power=noise_power):
             return spacing_hz * pattern, pattern, pattern
     return spacing_hz, combs.blade_count_from_sublines(lines, float(spacing_hz[0]), half_width_hz=band_hz), pattern
 
 
-def _rotors_drift_on_comb(micro, spacing_hz, turn_repeat, *, prf_hz, noise_power):
+def _rotors_drift_on_comb(micro, lines, spacing_hz, turn_repeat, *, noise_power):
     """Whether the rotors of one unfolded comb at ``spacing_hz`` turn at rates apart, so that no phases of theirs
     cancel its lines, and the comb stands for them all.
 
@@ -1196,8 +1196,8 @@ def _rotors_drift_on_comb(micro, spacing_hz, turn_repeat, *, prf_hz, noise_power
     out of ``micro``'s), they drift through each other's phases, and a line pattern is their blades': six 2-blade
     rotors within 0.9 % of 58 rev/s, wandering 2 %, one blade of each 1.87 times the other, repeated each turn with
     0.47 (the independent simulator's rotors at one rate: 0.86-0.99). The comb's first lines, where rotors a few per
-    cent apart are not resolved, must then centre within ``AGREEMENT`` of it
-    (:func:`mdpipe.process.combs.first_lines_rate_hz`): a comb read over many orders follows the rotor whose lines
+    cent apart are not resolved, must then centre within ``AGREEMENT`` of it (on the dwell's line scores ``lines``,
+    :func:`mdpipe.process.combs.first_lines_rate_hz`): a comb read over many orders follows the rotor whose lines
     stand strongest (four 4-blade rotors at 78.2-81.7 rev/s seen 0.1 s: a comb at 78.1 Hz, 2.6 % under their mean, its
     first lines centring on 80.0 Hz).
     """
@@ -1205,7 +1205,7 @@ def _rotors_drift_on_comb(micro, spacing_hz, turn_repeat, *, prf_hz, noise_power
     signal_share = 1.0 - noise_power / power if power > 0 else 0.0
     if not (signal_share > 0 and turn_repeat < DRIFTING_REPEAT * signal_share):
         return False
-    centre_hz = combs.first_lines_rate_hz(micro, spacing_hz, prf_hz=prf_hz, noise_power=noise_power)
+    centre_hz = combs.first_lines_rate_hz(lines, spacing_hz)
     return centre_hz is not None and _agrees(centre_hz / spacing_hz)
 
 
