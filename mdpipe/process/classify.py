@@ -11,7 +11,8 @@ m/s. So one rule serves X band and 94 GHz:
   ``MIN_FLYING_WING_SPREAD_MPS`` for a body flying at ``MIN_FLIGHT_SPEED_MPS`` or more, or travelling
   ``MIN_FLIGHT_DISTANCE_M`` in the dwell) and ``DRONE_SPREAD_MPS`` (about the body line, or the band's
   centre when no body line stands out; for an aliased band, the span's half-width, which the wings' spread
-  exceeds); or, within the same bounds, wings lit in bursts and dark between them while the body line holds
+  exceeds; for faint wings whose rows pass 0.8 of the span's half with a reach that swings as a stroke's, that share
+  of it); or, within the same bounds, wings lit in bursts and dark between them while the body line holds
   (``flapping_share``: glides between bursts too short for a wingbeat, or the turns of a slow stroke; rotors never
   stop); or, for a body that flies, within the same bounds, wings whose reach swings over the dwell as a stroke's
   does (``wing_stroke_swing``: too few beats for a wingbeat; a rotor's tips hold their speed);

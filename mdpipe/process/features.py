@@ -22,7 +22,8 @@ from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, dwell_frames,
-                                     flap_glide_share, stroke_swing, wing_reach_hz, wingbeat)
+                                     REACH_SPAN_SHARE, flap_glide_share, overruns_span, stroke_swing, wing_reach_hz,
+                                     wingbeat)
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame ...
 BODY_KEPT_LINE_DB = 3.0      # ... or this far, where it is the strongest line on the body track in ...
@@ -1414,7 +1415,7 @@ def wing_stroke(dwell, *, body_velocity, dwell_s):
     wing rows are lit."""
     if not _least_wing_spread_mps(body_velocity, dwell_s=dwell_s)[0]:
         return withheld("not_flying", "")
-    if dwell_s / 8 < STROKE_FRAME_S:
+    if not _stroke_readable(dwell_s):
         return withheld("dwell_short", "")
     swing = stroke_swing(*dwell())
     if swing is None or swing < STROKE_SWING:
@@ -1422,11 +1423,37 @@ def wing_stroke(dwell, *, body_velocity, dwell_s):
     return Measured(swing)
 
 
+def _stroke_readable(dwell_s):
+    """Whether the dwell's frames (an eighth of ``dwell_s``) are ``STROKE_FRAME_S`` long at least: a slow rotor turns
+    within one, so that its tips' reach holds from frame to frame."""
+    return dwell_s / 8 >= STROKE_FRAME_S
+
+
 def _wing_reach_mps(dwell, *, prf_hz, wavelength_m):
     """:func:`~mdpipe.process.wingbeat.wing_reach_hz` on ``dwell`` (the dwell's spectrogram and noise level) as a speed
     (m/s), or None."""
     reach_hz = wing_reach_hz(*dwell, prf_hz=prf_hz)
     return None if reach_hz is None else abs(_speed_mps(reach_hz, wavelength_m))
+
+
+def _stroke_overrunning_span_mps(dwell, *, prf_hz, wavelength_m, dwell_s):
+    """The least reach (m/s) of wings whose faint rows light the span past ``REACH_SPAN_SHARE`` of its half
+    (:func:`~mdpipe.process.wingbeat.overruns_span` on ``dwell``, the dwell's spectrogram and noise level) and whose
+    reach swings over the dwell as a stroke's does (:func:`~mdpipe.process.wingbeat.stroke_swing`, ``STROKE_SWING``
+    or more), that share of the span's half as a speed; else None.
+
+    Wing tips at a few m/s overrun the span of a 94 GHz radar at a PRF of 2-6 kHz (+-1.6-4.8 m/s): their rows fill it
+    a few dB over the noise, the dwell's band shows only the body line and their reach is known only to pass the span's
+    edge. Blade tips that fill the span as faintly hold their speed, and their reach holds from frame to frame (two
+    quadrotors whose combs were not found swung 0.03-0.06); a wing's reach falls at the turns of its stroke. Faint
+    tips whose power swells and fades as a whole (rotors beating) would swing too: a synthetic fill of the span a few
+    dB over the noise, its power beating at 6 Hz, swung 0.2-0.6; no drone of the sweeps reads so."""
+    if not _stroke_readable(dwell_s) or not overruns_span(*dwell, prf_hz=prf_hz):
+        return None
+    swing = stroke_swing(*dwell)
+    if swing is None or swing < STROKE_SWING:
+        return None
+    return abs(_speed_mps(REACH_SPAN_SHARE * prf_hz / 2, wavelength_m))
 
 
 def _least_wing_spread_mps(body_velocity, *, dwell_s):
@@ -1464,7 +1491,8 @@ def _wings_over_ambiguous_period(turn, beat, *, body_velocity, dwell_s, reach_mp
     return Rotation.withheld("not_rotor", note), True
 
 
-def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None, reach_mps=lambda: None):
+def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None, reach_mps=lambda: None,
+          overrun_mps=lambda: None):
     """A repeating micro-Doppler is a wingbeat only if its spread is that of wings (m/s, wavelength-free).
 
     Below ``MIN_WING_SPREAD_MPS`` it is swaying clutter (a branch, leaves); above ``DRONE_SPREAD_MPS``
@@ -1480,14 +1508,16 @@ def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None, reach_mps=
     Where the band is narrower than wings (or none stands out of the dwell spectrum), ``reach_mps`` (the wings'
     reach in the frames, m/s, or None: :func:`~mdpipe.process.wingbeat.wing_reach_hz`) stands for it: weak wings,
     or wings beating in bursts between glides, light the frames they beat in a few dB over the noise, and the dwell's
-    band, 10 dB over its smoothed spectrum, shows only the body line.
+    band, 10 dB over its smoothed spectrum, shows only the body line. Where that reach passes the span's edge,
+    ``overrun_mps`` (the least it can be, m/s, where it swings as a stroke's: :func:`_stroke_overrunning_span_mps`;
+    else None) stands for it.
     """
     if beat.value is None:
         return beat
     described = described or f"a micro-Doppler repeating at {beat.value:.3g} Hz"
     flying, low = _least_wing_spread_mps(body_velocity, dwell_s=dwell_s)
     if halfwidth.value is None or (halfwidth.status == OK and halfwidth.value < low):
-        if _within_wing_reach(reach_mps(), low):
+        if _within_wing_reach(reach_mps(), low) or _within_wing_reach(overrun_mps(), low):
             return beat
     if halfwidth.value is None:
         return withheld("not_applicable", f"{described}, but no band above the noise to tell wings from swaying "
@@ -1567,8 +1597,10 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     else:
         dwell = functools.cache(lambda: dwell_frames(body.demodulated, prf_hz=prf_hz, noise_power=noise_power))
         reach = functools.cache(lambda: _wing_reach_mps(dwell(), prf_hz=prf_hz, wavelength_m=wavelength_m))
+        overrun = functools.cache(lambda: _stroke_overrunning_span_mps(dwell(), prf_hz=prf_hz,
+                                                                       wavelength_m=wavelength_m, dwell_s=dwell_s))
         as_wings = functools.partial(wings, halfwidth=band.halfwidth, body_velocity=body.velocity, dwell_s=dwell_s,
-                                     reach_mps=reach)  # each measurement of wings, held to the spread of wings
+                                     reach_mps=reach, overrun_mps=overrun)  # each held to the spread of wings
         beat = as_wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
                                       band_hz=2 * band.half_width_hz))
         flaps = flapping(dwell())

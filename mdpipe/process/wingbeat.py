@@ -448,8 +448,8 @@ def wing_reach_hz(spec, noise_level, *, prf_hz):
     """How far from the body line (Hz) the rows of :func:`weak_rows`, over the whole span, reach, lit ``WEAK_ROW_DB``
     over the noise in a quarter of the frames of the dwell's spectrogram ``spec`` (:func:`dwell_frames`): the
     outer edge of the outermost such row. None where fewer than ``MIN_WING_ROWS`` are, or where they reach past
-    ``REACH_SPAN_SHARE`` of the span's half (the reach is then unknown: faint blade flashes that fill the span
-    light it so, a quadrotor at 77 GHz to 97 % of it, and so do a gull's wings at 94 GHz).
+    ``REACH_SPAN_SHARE`` of the span's half (the reach is then unknown, :func:`overruns_span`: faint blade flashes that
+    fill the span light it so, a quadrotor at 77 GHz to 97 % of it, and so do a gull's wings at 94 GHz).
 
     The dwell's band (:func:`mdpipe.process.spectral.occupied_band`, 10 dB over the smoothed dwell spectrum) misses
     wings that stand a few dB over the noise in each frame, or beat only in bursts (a crow of the evaluation sweep,
@@ -457,13 +457,27 @@ def wing_reach_hz(spec, noise_level, *, prf_hz):
     blades reach on past wings (a quadrotor at K band, its lines 12 dB over the noise, its rows beat at 11.7 Hz
     and, read to 2 kHz only, passed for wings).
     """
+    reach_hz = _weak_reach_hz(spec, noise_level)
+    return reach_hz if reach_hz is not None and reach_hz <= REACH_SPAN_SHARE * prf_hz / 2 else None
+
+
+def overruns_span(spec, noise_level, *, prf_hz):
+    """Whether the rows of :func:`weak_rows` (see :func:`wing_reach_hz`) reach past ``REACH_SPAN_SHARE`` of the span's
+    half: what lights them moves faster than the span holds, or as fast, and they tell only that."""
+    reach_hz = _weak_reach_hz(spec, noise_level)
+    return reach_hz is not None and reach_hz > REACH_SPAN_SHARE * prf_hz / 2
+
+
+def _weak_reach_hz(spec, noise_level):
+    """The outer edge (Hz from the body line) of the outermost row of :func:`weak_rows` over the whole span lit
+    ``WEAK_ROW_DB`` over the noise in a quarter of the frames of ``spec``; None where fewer than ``MIN_WING_ROWS``
+    are."""
     rows = weak_rows(spec, noise_level, max_hz=np.inf)
     lit = _lit_mask(rows, noise_level, SIGNAL_ROW_PERCENTILES[-1], off_hz=_body_hz(spec, BODY_LOBE_BINS),
                     lit_db=WEAK_ROW_DB, max_hz=np.inf)
     if lit.sum() < MIN_WING_ROWS:
         return None
-    reach_hz = float(np.abs(rows.f_hz[lit]).max() + WEAK_MERGE_BINS * (spec.f_hz[1] - spec.f_hz[0]) / 2)
-    return reach_hz if reach_hz <= REACH_SPAN_SHARE * prf_hz / 2 else None
+    return float(np.abs(rows.f_hz[lit]).max() + WEAK_MERGE_BINS * (spec.f_hz[1] - spec.f_hz[0]) / 2)
 
 
 def _looks(frames):
