@@ -189,15 +189,14 @@ def test_wingbeat_of_a_bird_whose_wing_band_aliases(tmp_path):
     assert_wingbeat(row, 4.0, rel=0.01)
 
 
-
 def test_faint_wings_overrunning_a_94_ghz_span_whose_reach_swings_are_a_bird(tmp_path):
     """A gull of the default sweep (scene 75, its clutter too): 94 GHz at PRF 3.0 kHz, a span of +-2.4 m/s; beating
     3.05 Hz over 1.0 s at -8.8 dB per IF sample, flying across the beam (0.43 m/s in range). Its wing tips overrun the
     span and light it a few dB over the noise: the dwell's band is the body line's alone (0.074 m/s) and its faint rows
     reach past 0.8 of the span's half, where their reach is not read. Its pattern repeats at 3.04 Hz; it was given no
-    wingbeat (`none`). A rotor's tips filling the span hold their reach from frame to frame; these swing with the
-    stroke (0.35 of their greatest): wings that reach 0.8 of the span's half at least, 1.9 m/s, over the 1 m/s of a
-    swaying branch. A bird, beating within 0.2 %."""
+    wingbeat (`none`). Its reach swings with the stroke (0.35 of its greatest), and no blade flash is read: wings
+    that reach 0.8 of the span's half at least, 1.9 m/s, over the 1 m/s of a swaying branch. A bird, beating within
+    0.2 %."""
     radar = dict(f_start_hz=94.0e9, f_stop_hz=94.1e9, ramp_up_s=0.000265753, chirp_period_s=0.000332192,
                  sample_rate_hz=481650.2546650462, n_samples=128, n_chirps=3034, n_channels=1)
     gull = {"name": "gull", "type": "bird", "a1_deg": 45.9772, "a2_deg": 48.6075,
