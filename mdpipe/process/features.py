@@ -1448,7 +1448,7 @@ def _stroke_overrunning_span_mps(dwell, *, prf_hz, wavelength_m, dwell_s):
     tips hold their speed, but faint tips' rows light the span unevenly from frame to frame (their power beating, frames
     shorter than a turn, noise). Of the drones of the five evaluation sweeps and `make offmodel` whose faint rows pass
     the span's edge and whose echo repeats (21), 13 swing 0.15 or more (up to 0.83), and a synthetic fill of the span
-    beating at 6 Hz 0.2-0.6; each was read a drone first by its blade flashes (a comb, or flashes of an ambiguous
+    beating at 6 Hz 0.13-0.78; each was read a drone first by its blade flashes (a comb, or flashes of an ambiguous
     period, after which a beat counts only within the measured reach of wings), or lies beyond this reading (a span
     wider than wings', a dwell under 0.4 s). Two 77 GHz drones of six rotors seen 0.5 s at -5 dB, swinging 0.67 and
     0.45 in spans this reading covers, are drones by their flashes alone: one whose blades show no flash and fill a
