@@ -427,11 +427,12 @@ def test_a_wings_reach_swings_within_a_stroke_and_a_rotors_holds():
 def test_wings_overrunning_the_span_swing_and_blades_filling_it_hold_unless_they_beat():
     """Synthetic echoes at PRF 2 kHz over 0.8 s (64 ms frames), the body at 0 Hz. A wing point whose Doppler swings
     +-1500 Hz at 3 Hz overruns the +-1000 Hz span; blade tips folded many times fill it (lines every 20 Hz across it,
-    each about 13 dB over the noise in a frame's bin). The rows of both reach past 0.8 of the span's half: their reach
-    is not read (``wing_reach_hz``), only that they overrun the span. The wing's reach swings with its stroke (0.41 of
-    its greatest between the 5th and 95th percentiles of the frames); the tips' holds (0.02). The same tips at 0.3 of
-    that amplitude, their power beating at 6 Hz (from nothing to full and back), swing as far as the wing (0.60): the
-    swing tells a stroke from steady tips, not from beating ones (blade flashes, read first, tell those)."""
+    each about 13 dB over the noise in a frame's bin); the same tips at 0.3 of that amplitude, their power beating at
+    6 Hz (from nothing to full and back). The rows of all three reach past 0.8 of the span's half: their reach is not
+    read (``wing_reach_hz``), only that they overrun the span. The wing's reach swings with its stroke (0.41 of its
+    greatest between the 5th and 95th percentiles of the frames); the steady tips' holds (0.02); the beating tips'
+    swings as far as the wing's (0.60): the swing tells a stroke from steady tips, not from beating ones (blade
+    flashes, read first, tell those)."""
     prf_hz, t_s = 2000.0, np.arange(1600) / 2000.0
     rng = np.random.default_rng(7)
     noise = (rng.normal(size=len(t_s)) + 1j * rng.normal(size=len(t_s))) / np.sqrt(2)

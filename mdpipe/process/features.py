@@ -22,7 +22,7 @@ from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, dwell_frames,
-                                     REACH_SPAN_SHARE, flap_glide_share, overruns_span, stroke_swing, wing_reach_hz,
+                                     flap_glide_share, overruns_span, readable_reach_hz, stroke_swing, wing_reach_hz,
                                      wingbeat)
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame ...
@@ -1440,26 +1440,31 @@ def _stroke_overrunning_span_mps(dwell, *, prf_hz, wavelength_m, dwell_s):
     """The least reach (m/s) of wings whose faint rows light the span past ``REACH_SPAN_SHARE`` of its half
     (:func:`~mdpipe.process.wingbeat.overruns_span` on ``dwell``, the dwell's spectrogram and noise level) and whose
     reach swings over the dwell as a stroke's does (:func:`~mdpipe.process.wingbeat.stroke_swing`, ``STROKE_SWING``
-    or more), that share of the span's half as a speed; else None.
+    or more, read as :func:`wing_stroke` reads it: within 2 kHz of the body line), that share of the span's half as a
+    speed; else None.
 
-    Wing tips at a few m/s overrun the span of a 94 GHz radar at a PRF of 2-6 kHz (+-1.6-4.8 m/s): their rows fill it
-    a few dB over the noise, the dwell's band shows only the body line and their reach is known only to pass the span's
-    edge; a wing's reach falls at the turns of its stroke. The swing does not tell blades from wings by itself: blade
-    tips hold their speed, but faint tips' rows light the span unevenly from frame to frame (their power beating, frames
-    shorter than a turn, noise). Of the drones of the five evaluation sweeps and `make offmodel` whose faint rows pass
-    the span's edge and whose echo repeats (21), 13 swing 0.15 or more (up to 0.83), and a synthetic fill of the span
-    beating at 6 Hz 0.13-0.78; each was read a drone first by its blade flashes (a comb, or flashes of an ambiguous
-    period, after which a beat counts only within the measured reach of wings), or lies beyond this reading (a span
-    wider than wings', a dwell under 0.4 s). Two 77 GHz drones of six rotors seen 0.5 s at -5 dB, swinging 0.67 and
-    0.45 in spans this reading covers, are drones by their flashes alone: one whose blades show no flash and fill a
-    W-band span faintly, beating, would read as a bird. Small birds beating 8-16 Hz swing under 0.06 (a frame holds a
-    beat) and are read by their band instead."""
+    Wing tips at 5-7 m/s overrun the span of a 94 GHz radar under a PRF of about 7 kHz (+-1.6-4.8 m/s at 2-6 kHz), a
+    77 GHz one under 6 kHz, a K-band one under 2 kHz: their rows fill it a few dB over the noise, the dwell's band shows
+    only the body line and their reach is known only to pass that share of the span; a wing's reach falls at the turns
+    of its stroke. The bound returned is a spread as any other: held to 1 m/s at least (0.5 flying) by :func:`wings`,
+    over what a swaying branch reaches, so a body that does not fly is read too (the gull of the default sweep crosses
+    the beam at 5.9 m/s, 0.43 m/s in range); none of the 35 branches of the three default-family sweeps moved. The swing
+    does not tell blades from wings by itself: blade tips hold their speed, but faint tips' rows light the span
+    unevenly from frame to frame (their power beating, frames shorter than a turn, noise). Of the drones of the five
+    evaluation sweeps and `make offmodel` whose faint rows pass that share of the span and whose echo repeats (21), 13
+    swing 0.15 or more (up to 0.83), and a synthetic fill of the span beating at 6 Hz 0.13-0.78; each was read a drone
+    first by its blade flashes (a comb, or flashes of an ambiguous period, after which a beat counts only within the
+    measured reach of wings), or lies beyond this reading (a span of 12.5 m/s or more, whose share passes wings', or a
+    dwell under 0.4 s). Two 77 GHz drones of six rotors seen 0.5 s at -5 dB, swinging 0.67 and 0.45 in spans this
+    reading covers, are drones by their flashes alone: one whose blades show no flash and fill a W-band span faintly,
+    beating, would read as a bird. Small birds beating 8-16 Hz swing under 0.06 (a 64 ms frame holds half a beat or
+    more, a mid-stroke in each) and are read by their band instead."""
     if not _stroke_readable(dwell_s) or not overruns_span(*dwell, prf_hz=prf_hz):
         return None
     swing = stroke_swing(*dwell)
     if swing is None or swing < STROKE_SWING:
         return None
-    return abs(_speed_mps(REACH_SPAN_SHARE * prf_hz / 2, wavelength_m))
+    return abs(_speed_mps(readable_reach_hz(prf_hz), wavelength_m))
 
 
 def _least_wing_spread_mps(body_velocity, *, dwell_s):
@@ -1514,9 +1519,9 @@ def wings(beat, halfwidth, body_velocity, *, dwell_s, described=None, reach_mps=
     Where the band is narrower than wings (or none stands out of the dwell spectrum), ``reach_mps`` (the wings'
     reach in the frames, m/s, or None: :func:`~mdpipe.process.wingbeat.wing_reach_hz`) stands for it: weak wings,
     or wings beating in bursts between glides, light the frames they beat in a few dB over the noise, and the dwell's
-    band, 10 dB over its smoothed spectrum, shows only the body line. Where that reach passes the span's edge,
-    ``overrun_mps`` (the least it can be, m/s, where it swings as a stroke's: :func:`_stroke_overrunning_span_mps`;
-    else None) stands for it.
+    band, 10 dB over its smoothed spectrum, shows only the body line. Where that reach passes ``REACH_SPAN_SHARE`` of
+    the span's half (not read), ``overrun_mps`` (the least it can be, m/s, where it swings as a stroke's:
+    :func:`_stroke_overrunning_span_mps`; else None) stands for it.
     """
     if beat.value is None:
         return beat

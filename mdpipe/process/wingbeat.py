@@ -458,14 +458,19 @@ def wing_reach_hz(spec, noise_level, *, prf_hz):
     and, read to 2 kHz only, passed for wings).
     """
     reach_hz = _weak_reach_hz(spec, noise_level)
-    return reach_hz if reach_hz is not None and reach_hz <= REACH_SPAN_SHARE * prf_hz / 2 else None
+    return reach_hz if reach_hz is not None and reach_hz <= readable_reach_hz(prf_hz) else None
 
 
 def overruns_span(spec, noise_level, *, prf_hz):
     """Whether the rows of :func:`weak_rows` (see :func:`wing_reach_hz`) reach past ``REACH_SPAN_SHARE`` of the span's
     half: what lights them moves faster than the span holds, or as fast, and they tell only that."""
     reach_hz = _weak_reach_hz(spec, noise_level)
-    return reach_hz is not None and reach_hz > REACH_SPAN_SHARE * prf_hz / 2
+    return reach_hz is not None and reach_hz > readable_reach_hz(prf_hz)
+
+
+def readable_reach_hz(prf_hz):
+    """The farthest reach (Hz from the body line) read as one: ``REACH_SPAN_SHARE`` of the span's half."""
+    return REACH_SPAN_SHARE * prf_hz / 2
 
 
 def _weak_reach_hz(spec, noise_level):
