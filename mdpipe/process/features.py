@@ -1405,28 +1405,28 @@ def flapping(dwell):
     return Measured(share)
 
 
-def wing_stroke(dwell, *, body_velocity, dwell_s):
-    """How far a flying body's wings' reach swings over the dwell, a share of its greatest
-    (:func:`~mdpipe.process.wingbeat.stroke_swing` on ``dwell()``, the dwell's spectrogram and noise level): a stroke
-    seen, where the dwell holds too few beats for a
-    wingbeat (birds beating 2-3.5 Hz seen for 0.4-0.9 s). Withheld as ``not_flying`` where the body neither flies
-    nor travels (:func:`_least_wing_spread_mps`: a swaying branch's reach swings too), ``dwell_short`` where the
-    frames are shorter than a slow rotor's turn, ``no_stroke`` where the reach swings under ``STROKE_SWING`` or no
-    wing rows are lit."""
+def wing_stroke(swing, *, body_velocity, dwell_s):
+    """How far a flying body's wings' reach swings over the dwell, a share of its greatest (``swing()``:
+    :func:`~mdpipe.process.wingbeat.stroke_swing` on the dwell's spectrogram and noise level): a stroke seen, where the
+    dwell holds too few beats for a wingbeat (birds beating 2-3.5 Hz seen for 0.4-0.9 s). Withheld as ``not_flying``
+    where the body neither flies nor travels (:func:`_least_wing_spread_mps`: a swaying branch's reach swings too),
+    else as :func:`_stroke` reads it."""
     if not _least_wing_spread_mps(body_velocity, dwell_s=dwell_s)[0]:
         return withheld("not_flying", "")
-    if not _stroke_readable(dwell_s):
+    return _stroke(swing, dwell_s=dwell_s)
+
+
+def _stroke(swing, *, dwell_s):
+    """The swing of the wings' reach over the dwell (``swing()``, read only here) where it is a stroke's: withheld as
+    ``dwell_short`` where the frames (an eighth of ``dwell_s``) are shorter than ``STROKE_FRAME_S``, a slow rotor's
+    turn (within one, a rotor's tips' reach holds from frame to frame), ``no_stroke`` where the reach swings under
+    ``STROKE_SWING`` or no wing rows are lit."""
+    if dwell_s / 8 < STROKE_FRAME_S:
         return withheld("dwell_short", "")
-    swing = stroke_swing(*dwell())
-    if swing is None or swing < STROKE_SWING:
+    value = swing()
+    if value is None or value < STROKE_SWING:
         return withheld("no_stroke", "")
-    return Measured(swing)
-
-
-def _stroke_readable(dwell_s):
-    """Whether the dwell's frames (an eighth of ``dwell_s``) are ``STROKE_FRAME_S`` long at least: a slow rotor turns
-    within one, so that its tips' reach holds from frame to frame."""
-    return dwell_s / 8 >= STROKE_FRAME_S
+    return Measured(value)
 
 
 def _wing_reach_mps(dwell, *, prf_hz, wavelength_m):
@@ -1436,11 +1436,11 @@ def _wing_reach_mps(dwell, *, prf_hz, wavelength_m):
     return None if reach_hz is None else abs(_speed_mps(reach_hz, wavelength_m))
 
 
-def _stroke_overrunning_span_mps(dwell, *, prf_hz, wavelength_m, dwell_s):
+def _stroke_overrunning_span_mps(dwell, swing, *, prf_hz, wavelength_m, dwell_s):
     """The least reach (m/s) of wings whose faint rows light the span past ``REACH_SPAN_SHARE`` of its half
     (:func:`~mdpipe.process.wingbeat.overruns_span` on ``dwell``, the dwell's spectrogram and noise level) and whose
-    reach swings over the dwell as a stroke's does (:func:`~mdpipe.process.wingbeat.stroke_swing`, ``STROKE_SWING``
-    or more, read as :func:`wing_stroke` reads it: within 2 kHz of the body line), that share of the span's half as a
+    reach swings over the dwell as a stroke's does (``swing()``, :func:`~mdpipe.process.wingbeat.stroke_swing`, read as
+    :func:`wing_stroke` reads it, :func:`_stroke`: within 2 kHz of the body line), that share of the span's half as a
     speed; else None.
 
     Wing tips at 5-7 m/s overrun the span of a 94 GHz radar under a PRF of about 7 kHz (+-1.6-4.8 m/s at 2-6 kHz), a
@@ -1459,10 +1459,7 @@ def _stroke_overrunning_span_mps(dwell, *, prf_hz, wavelength_m, dwell_s):
     reading covers, are drones by their flashes alone: one whose blades show no flash and fill a W-band span faintly,
     beating, would read as a bird. Small birds beating 8-16 Hz swing under 0.06 (a 64 ms frame holds half a beat or
     more, a mid-stroke in each) and are read by their band instead."""
-    if not _stroke_readable(dwell_s) or not overruns_span(*dwell, prf_hz=prf_hz):
-        return None
-    swing = stroke_swing(*dwell)
-    if swing is None or swing < STROKE_SWING:
+    if _stroke(swing, dwell_s=dwell_s).value is None or not overruns_span(*dwell, prf_hz=prf_hz):
         return None
     return abs(_speed_mps(readable_reach_hz(prf_hz), wavelength_m))
 
@@ -1608,7 +1605,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     else:
         dwell = functools.cache(lambda: dwell_frames(body.demodulated, prf_hz=prf_hz, noise_power=noise_power))
         reach = functools.cache(lambda: _wing_reach_mps(dwell(), prf_hz=prf_hz, wavelength_m=wavelength_m))
-        overrun = functools.cache(lambda: _stroke_overrunning_span_mps(dwell(), prf_hz=prf_hz,
+        swing = functools.cache(lambda: stroke_swing(*dwell()))  # read by the stroke and by wings overrunning the span
+        overrun = functools.cache(lambda: _stroke_overrunning_span_mps(dwell(), swing, prf_hz=prf_hz,
                                                                        wavelength_m=wavelength_m, dwell_s=dwell_s))
         as_wings = functools.partial(wings, halfwidth=band.halfwidth, body_velocity=body.velocity, dwell_s=dwell_s,
                                      reach_mps=reach, overrun_mps=overrun)  # each held to the spread of wings
@@ -1617,7 +1615,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         flaps = flapping(dwell())
         flaps = as_wings(flaps, described=flaps.value is not None and f"a micro-Doppler in bursts over "
                          f"{flaps.value:.0%} of the dwell, dark between them,")
-        stroke = wing_stroke(dwell, body_velocity=body.velocity, dwell_s=dwell_s)
+        stroke = wing_stroke(swing, body_velocity=body.velocity, dwell_s=dwell_s)
         stroke = as_wings(stroke, described=stroke.value is not None and f"a micro-Doppler whose reach swings "
                           f"{stroke.value:.0%} of its greatest over the dwell")
         if wings_may_repeat:
