@@ -259,16 +259,17 @@ def test_ramp_parts_of_noise_tell_nothing():
     assert flashes.ramp_repeats_whole(train, 37.5, shortest_chirps=2.7) is None
 
 
-def _sides(flash_period, *, alternate, both=False, n_chirps=8000, amplitude=4.0, seed=5):
+def _sides(flash_period, *, alternate, both=False, n_chirps=8000, amplitude=4.0, upper=1.0, seed=5):
     """Two range sides' slow time: unit complex noise each, and flashes (one chirp, random phase) every
     ``flash_period`` chirps, by turns on the lower and the upper side (``alternate``: an odd N's approaching and
-    receding blades) or on both at once; ``both``: each flash seen on both sides (a beat that hardly moves)."""
+    receding blades) or on both at once; ``both``: each flash seen on both sides (a beat that hardly moves);
+    ``upper``: the upper side's share of the flashes' amplitude (a target off its range bin's centre)."""
     rng = np.random.default_rng(seed)
     x = (rng.standard_normal((n_chirps, 2)) + 1j * rng.standard_normal((n_chirps, 2))) / np.sqrt(2)
     for j, t in enumerate(np.arange(10.0, n_chirps - 1, flash_period)):
         on = (0, 1) if both or not alternate else (j % 2,)
         for side in on:
-            x[int(t), side] += amplitude * np.exp(2j * np.pi * rng.uniform())
+            x[int(t), side] += amplitude * (upper if side else 1.0) * np.exp(2j * np.pi * rng.uniform())
     return x
 
 
@@ -280,6 +281,15 @@ def test_flashes_alternating_range_sides_tell_an_odd_blade_count():
     assert not flashes.sides_alternate(_sides(40.0, alternate=False), 40.0)
     assert not flashes.sides_alternate(_sides(40.0, alternate=True, both=True), 40.0)
     assert not flashes.sides_alternate(_sides(40.0, alternate=True, amplitude=0.0), 40.0)
+
+
+def test_flashes_alternating_range_sides_unevenly_are_read_on_both_sides_pooled():
+    """Flashes by turns on the two sides (amplitude 2.5 in unit noise), the upper side's at 0.7 of the lower's (a
+    target off its bin's centre): the upper side's repeat at every second flash stands 3.9 sigmas, under the 4 asked
+    of one side, the lower's 16; pooled, the two sides' stand over 4 sqrt(2). Still an odd N; flashes on both sides
+    at once, as uneven, are not."""
+    assert flashes.sides_alternate(_sides(40.0, alternate=True, amplitude=2.5, upper=0.7), 40.0)
+    assert not flashes.sides_alternate(_sides(40.0, alternate=False, amplitude=2.5, upper=0.7), 40.0)
 
 
 def test_a_power_period_three_flashes_long_is_settled_at_the_flashes():

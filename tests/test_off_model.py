@@ -1230,6 +1230,28 @@ def test_flashes_alternating_range_sides_give_an_odd_count_chopping(tmp_path):
     assert row["rotation_rate_hz_status"] == "assumed_blades"
 
 
+def test_flashes_alternating_range_sides_unevenly_give_the_odd_count_chopping(tmp_path):
+    """A K-band 3-blade quadrotor of the default sweep (scene 0154, clutter left out), N = 3 given: rotors 98.4-104.3
+    rev/s (chopping 295-313 Hz) at -3.8 dB per IF sample, the flashes seen only in the power, which repeats every
+    1.68 ms (594 Hz): an odd N's approaching and receding blades by turns, or its chopping (withheld before). Read at
+    the range sides, the lower side's repeat at every second flash stands 3.4 sigmas, the upper's 5.3, neither at the
+    next flash, the sides correlating one flash apart (6.4) and not at once (0.8): alternating sides pooled over both,
+    the chopping half the flash rate."""
+    radar = dict(f_start_hz=24e9, f_stop_hz=24.25e9, ramp_up_s=3.0232e-05, chirp_period_s=3.779e-05,
+                 sample_rate_hz=2116962.161418365, n_samples=64, n_chirps=13259, n_channels=4)
+    quad = {"name": "three_blade_quad", "type": "multirotor", "elevation_deg": 25.8272, "body_rcs_m2": 0.0225393,
+            "motion": {"position_m": [2.12834, -0.0770844, 6.54563], "velocity_mps": [1.45392, 0.176435, 0.0]},
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [141.618, 83.9485, 185.011, 13.4261], "blade_rcs_m2": 0.00406605,
+                       "rate_wander_fraction": 0.00294444, "rate_wander_period_s": 1.96907,
+                       "tilt_deg": [0.951749, -3.2533, -0.988855, -3.27268], "blades": 3, "arm_m": 0.342151,
+                       "blade_length_m": 0.266771, "blade_gains": [1.0, 1.0, 1.62484],
+                       "rev_per_s": [104.285, -98.4345, 98.6639, -100.238]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=-3.78586, seed=274083680, n_blades=3)
+    assert row["chopping_freq_hz_status"] == "ok" and 295.3 * 0.99 <= row["chopping_freq_hz"] <= 312.9 * 1.01
+    assert row["rotation_rate_hz_status"] == "ok" and 98.4 * 0.99 <= row["rotation_rate_hz"] <= 104.3 * 1.01
+
+
 def test_flash_times_of_rotors_far_apart_in_rate_give_no_period(tmp_path):
     """A quadrotor of a held-out sweep (seed 9131; clutter left out) at 77 GHz, N = 2 given: rotors at 124.6-135.9
     rev/s (9 % apart), their flashes shorter than a chirp and caught stroboscopically, PRF / 40-44 each. Their
