@@ -284,12 +284,19 @@ def test_flashes_alternating_range_sides_tell_an_odd_blade_count():
 
 
 def test_flashes_alternating_range_sides_unevenly_are_read_on_both_sides_pooled():
-    """Flashes by turns on the two sides (amplitude 2.5 in unit noise), the upper side's at 0.7 of the lower's (a
-    target off its bin's centre): the upper side's repeat at every second flash stands 3.9 sigmas, under the 4 asked
-    of one side, the lower's 16; pooled, the two sides' stand over 4 sqrt(2). Still an odd N; flashes on both sides
-    at once, as uneven, are not."""
-    assert flashes.sides_alternate(_sides(40.0, alternate=True, amplitude=2.5, upper=0.7), 40.0)
-    assert not flashes.sides_alternate(_sides(40.0, alternate=False, amplitude=2.5, upper=0.7), 40.0)
+    """Flashes by turns on the two sides (amplitude 2.5 in unit noise), the upper side's at 0.55 of the lower's (a
+    target off its bin's centre): the upper side's repeat at every second flash stands 3.3 sigmas, under the 4 asked
+    of one side (the lower's 12), the two sides' summed 10.9 sqrt(2) sigmas, the sides one flash apart 7.8: an odd N.
+    As uneven, flashes on both sides at once are not; nor are flashes by turns (2.5 below, 5 above) where the lower
+    side holds a train at every flash besides (amplitude 3, 4 chirps off): its repeat at the next flash, 0.8 of its
+    repeat at the second, is no noise."""
+    assert flashes.sides_alternate(_sides(40.0, alternate=True, amplitude=2.5, upper=0.55, seed=7), 40.0)
+    assert not flashes.sides_alternate(_sides(40.0, alternate=False, amplitude=2.5, upper=0.55, seed=7), 40.0)
+    rng = np.random.default_rng(7)
+    every = _sides(40.0, alternate=True, amplitude=2.5, upper=2.0, seed=7)
+    for t in np.arange(14.0, len(every) - 1, 40.0):
+        every[int(t), 0] += 3.0 * np.exp(2j * np.pi * rng.uniform())
+    assert not flashes.sides_alternate(every, 40.0)
 
 
 def test_a_power_period_three_flashes_long_is_settled_at_the_flashes():

@@ -1234,9 +1234,9 @@ def test_flashes_alternating_range_sides_unevenly_give_the_odd_count_chopping(tm
     """A K-band 3-blade quadrotor of the default sweep (scene 0154, clutter left out), N = 3 given: rotors 98.4-104.3
     rev/s (chopping 295-313 Hz) at -3.8 dB per IF sample, the flashes seen only in the power, which repeats every
     1.68 ms (594 Hz): an odd N's approaching and receding blades by turns, or its chopping (withheld before). Read at
-    the range sides, the lower side's repeat at every second flash stands 3.4 sigmas, the upper's 5.3, neither at the
-    next flash, the sides correlating one flash apart (6.4) and not at once (0.8): alternating sides pooled over both,
-    the chopping half the flash rate."""
+    the range sides, the lower side's repeat at every second flash stands 3.4 sigmas (at the next 0.33 of that, within
+    2 sigmas of the noise), the upper's 5.4 (at the next hardly), the sides correlating one flash apart (6.3) and not
+    at once (0.8): alternating sides, pooled over both, the chopping half the flash rate."""
     radar = dict(f_start_hz=24e9, f_stop_hz=24.25e9, ramp_up_s=3.0232e-05, chirp_period_s=3.779e-05,
                  sample_rate_hz=2116962.161418365, n_samples=64, n_chirps=13259, n_channels=4)
     quad = {"name": "three_blade_quad", "type": "multirotor", "elevation_deg": 25.8272, "body_rcs_m2": 0.0225393,
