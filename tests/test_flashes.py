@@ -286,11 +286,14 @@ def test_flashes_alternating_range_sides_tell_an_odd_blade_count():
 def test_flashes_alternating_range_sides_unevenly_are_read_on_both_sides_pooled():
     """Flashes by turns on the two sides (amplitude 2.5 in unit noise), the upper side's at 0.55 of the lower's (a
     target off its bin's centre): the upper side's repeat at every second flash stands 3.3 sigmas, under the 4 asked
-    of one side (the lower's 12), the two sides' summed 10.9 sqrt(2) sigmas, the sides one flash apart 7.8: an odd N.
+    of one side (the lower's 12), the two sides' sum 11.8 of its own, the sides one flash apart 7.8: an odd N. At 0.45
+    the upper side repeats 1.8 sigmas at the second flash and 0.65 at the next, over 0.3 of that but within 2 sigmas
+    of the noise: an odd N still, on the lower side and the sides one flash apart (5.9).
     As uneven, flashes on both sides at once are not; nor are flashes by turns (2.5 below, 5 above) where the lower
     side holds a train at every flash besides (amplitude 3, 4 chirps off): its repeat at the next flash, 0.8 of its
     repeat at the second, is no noise."""
     assert flashes.sides_alternate(_sides(40.0, alternate=True, amplitude=2.5, upper=0.55, seed=7), 40.0)
+    assert flashes.sides_alternate(_sides(40.0, alternate=True, amplitude=2.5, upper=0.45, seed=7), 40.0)
     assert not flashes.sides_alternate(_sides(40.0, alternate=False, amplitude=2.5, upper=0.55, seed=7), 40.0)
     rng = np.random.default_rng(7)
     every = _sides(40.0, alternate=True, amplitude=2.5, upper=2.0, seed=7)

@@ -81,7 +81,7 @@ RAMP_LOCKED_PAIRS = 0.2     # ... or this share, for a flash period held at a fe
 RAMP_MAX_SLOTS = 2 ** 19    # the grid of parts read at most (a bounded memory: about 160 B a slot, 84 MB)
 SIDE_BINS = 1.5             # the range sides of a target read this many bins below and above its bin ...
 SIDE_SIGMAS = 4.0           # ... their repeats that tell flashes alternating sides stand this many sigmas (the two
-                            # sides' repeats at every second flash, summed, sqrt(2) times this) ...
+                            # sides' repeats at every second flash summed, in the sum's own sigmas) ...
 SIDE_SHARE = 0.3            # ... and what flashes on both sides at once would add holds under this share of them ...
 SIDE_NEXT_SIGMAS = 2.0      # ... or, on one side's repeat at the next flash, within this many sigmas of the noise
 RAMP_DETREND_S = 2 * MAX_POWER_PERIOD_S  # the power resolved within the ramp, less its mean over this time
@@ -521,17 +521,18 @@ def sides_alternate(sides, flash_period_chirps):
     blades of an odd N flash one side at a time: an approaching blade, then, half a chopping period later, a
     receding one; an even N's flash on both at once. Each side's power (first-differenced, standardised) then
     repeats every second flash and not at the next, and the two sides' powers correlate one flash apart and not
-    at once. The two sides' summed correlation at the second flash stands ``SIDE_SIGMAS`` robust sigmas (of the
-    correlations over the lags from a quarter flash period to three) times sqrt(2), as one side's would stand
-    ``SIDE_SIGMAS`` (the sides' noise is independent; a target off its range bin's centre lights one side less: a
-    K-band 3-blade quadrotor at -3.8 dB per IF sample repeated 3.4 and 5.4 sigmas there); each side's repeat at the
+    at once. The two sides' summed correlation at the second flash stands ``SIDE_SIGMAS`` robust sigmas of the sum
+    (over the lags from a quarter flash period to three), as one side's would stand ``SIDE_SIGMAS`` of its own (a
+    target off its range bin's centre lights one side less: a K-band 3-blade quadrotor at -3.8 dB per IF sample
+    repeated 3.4 and 5.4 sigmas there, of the correlations' sigma, their sum 5.2 of its own); each side's repeat at the
     next flash holds under ``SIDE_SHARE`` of its own at the second, or within ``SIDE_NEXT_SIGMAS`` of the noise (that
-    quadrotor's weaker side: 0.33 of 3.4 sigmas); the sides one flash apart stand ``SIDE_SIGMAS`` and at once under
+    quadrotor's weaker side: 0.33 of 3.4 sigmas; a side that weak is not told apart from noise, and the call rests on
+    the other side and on the sides one flash apart); the sides one flash apart stand ``SIDE_SIGMAS`` and at once under
     ``SIDE_SHARE`` of that. Where the beat moves little (under a bin at X band) each side sees both blades and the
     sides tell nothing: flashes on both sides at once are never concluded (an even N is not told from that).
     Measured on 3-blade rotors at K, 77 and 94 GHz: each side at the next flash 0.0-0.19 of its repeat at the second
-    (one weak side 0.33), the sides one flash apart 4-27 sigmas and at once under 1; 2-blade rotors' sides repeated at
-    the next flash 0.8-1.8 times the second.
+    (two sides 0.33-0.34, of 3.4 and 5.3 sigmas), the sides one flash apart 4-27 sigmas and at once under 1; 2-blade
+    rotors' sides repeated at the next flash 0.8-1.8 times the second.
     """
     lag = float(flash_period_chirps)
     n = sides.shape[0] - 1
@@ -557,7 +558,9 @@ def sides_alternate(sides, flash_period_chirps):
     if not sigma > 0:
         return False
     apart, together = max(at(across, lag), at(back, lag)), max(at(across, 0), at(back, 0))
-    if at(lo + hi, 2 * lag) < SIDE_SIGMAS * np.sqrt(2) * sigma:
+    both = lo + hi
+    both_sigma = robust_sigma(both[int(lag / 4):])
+    if not (both_sigma > 0 and at(both, 2 * lag) >= SIDE_SIGMAS * both_sigma):
         return False
     for own in (lo, hi):
         if at(own, lag) > max(SIDE_SHARE * at(own, 2 * lag), SIDE_NEXT_SIGMAS * sigma):
