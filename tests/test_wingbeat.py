@@ -264,7 +264,8 @@ def weak_frames(echo, weak=None):
 
 
 def weak_reach_hz(echo):
-    return wingbeat.wing_reach_hz(*wingbeat.dwell_frames(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0), prf_hz=WEAK_PRF_HZ)
+    weak_hz = wingbeat.weak_reach_hz(*wingbeat.dwell_frames(echo, prf_hz=WEAK_PRF_HZ, noise_power=1.0))
+    return wingbeat.wing_reach_hz(weak_hz, prf_hz=WEAK_PRF_HZ)
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2, 3])
@@ -445,8 +446,9 @@ def test_wings_overrunning_the_span_swing_and_blades_filling_it_hold_unless_they
     swings = []
     for echo in (body + wing + noise, body + tips + noise, body + beating + noise):
         dwell = wingbeat.dwell_frames(echo, prf_hz=prf_hz, noise_power=1.0)
-        assert wingbeat.overruns_span(*dwell, prf_hz=prf_hz)
-        assert wingbeat.wing_reach_hz(*dwell, prf_hz=prf_hz) is None
+        weak_hz = wingbeat.weak_reach_hz(*dwell)
+        assert wingbeat.overruns_span(weak_hz, prf_hz=prf_hz)
+        assert wingbeat.wing_reach_hz(weak_hz, prf_hz=prf_hz) is None
         swings.append(wingbeat.stroke_swing(*dwell))
     assert 0.3 < swings[0] < 0.6
     assert swings[1] < 0.05

@@ -22,8 +22,8 @@ from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, dwell_frames,
-                                     flap_glide_share, overruns_span, readable_reach_hz, stroke_swing, wing_reach_hz,
-                                     wingbeat)
+                                     flap_glide_share, overruns_span, readable_reach_hz, stroke_swing, weak_reach_hz,
+                                     wing_reach_hz, wingbeat)
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame ...
 BODY_KEPT_LINE_DB = 3.0      # ... or this far, where it is the strongest line on the body track in ...
@@ -1429,16 +1429,16 @@ def _stroke(swing, *, dwell_s):
     return Measured(value)
 
 
-def _wing_reach_mps(dwell, *, prf_hz, wavelength_m):
-    """:func:`~mdpipe.process.wingbeat.wing_reach_hz` on ``dwell`` (the dwell's spectrogram and noise level) as a speed
-    (m/s), or None."""
-    reach_hz = wing_reach_hz(*dwell, prf_hz=prf_hz)
+def _wing_reach_mps(weak_hz, *, prf_hz, wavelength_m):
+    """:func:`~mdpipe.process.wingbeat.wing_reach_hz` of the weak rows' reach ``weak_hz`` (Hz,
+    :func:`~mdpipe.process.wingbeat.weak_reach_hz` on the dwell's spectrogram) as a speed (m/s), or None."""
+    reach_hz = wing_reach_hz(weak_hz, prf_hz=prf_hz)
     return None if reach_hz is None else abs(_speed_mps(reach_hz, wavelength_m))
 
 
-def _stroke_overrunning_span_mps(dwell, swing, *, prf_hz, wavelength_m, dwell_s):
+def _stroke_overrunning_span_mps(weak_hz, swing, *, prf_hz, wavelength_m, dwell_s):
     """The least reach (m/s) of wings whose faint rows light the span past ``REACH_SPAN_SHARE`` of its half
-    (:func:`~mdpipe.process.wingbeat.overruns_span` on ``dwell``, the dwell's spectrogram and noise level) and whose
+    (:func:`~mdpipe.process.wingbeat.overruns_span` of their reach ``weak_hz``, Hz) and whose
     reach swings over the dwell as a stroke's does (``swing()``, :func:`~mdpipe.process.wingbeat.stroke_swing`, read as
     :func:`wing_stroke` reads it, :func:`_stroke`: within 2 kHz of the body line), that share of the span's half as a
     speed; else None.
@@ -1459,7 +1459,7 @@ def _stroke_overrunning_span_mps(dwell, swing, *, prf_hz, wavelength_m, dwell_s)
     reading covers, are drones by their flashes alone: one whose blades show no flash and fill a W-band span faintly,
     beating, would read as a bird. Small birds beating 8-16 Hz swing under 0.06 (a 64 ms frame holds half a beat or
     more, a mid-stroke in each) and are read by their band instead."""
-    if _stroke(swing, dwell_s=dwell_s).value is None or not overruns_span(*dwell, prf_hz=prf_hz):
+    if _stroke(swing, dwell_s=dwell_s).value is None or not overruns_span(weak_hz, prf_hz=prf_hz):
         return None
     return abs(_speed_mps(readable_reach_hz(prf_hz), wavelength_m))
 
@@ -1604,9 +1604,10 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                          "rates apart)")
     else:
         dwell = functools.cache(lambda: dwell_frames(body.demodulated, prf_hz=prf_hz, noise_power=noise_power))
-        reach = functools.cache(lambda: _wing_reach_mps(dwell(), prf_hz=prf_hz, wavelength_m=wavelength_m))
+        weak = functools.cache(lambda: weak_reach_hz(*dwell()))  # read by the wings' reach and by their overrun
+        reach = functools.cache(lambda: _wing_reach_mps(weak(), prf_hz=prf_hz, wavelength_m=wavelength_m))
         swing = functools.cache(lambda: stroke_swing(*dwell()))  # read by the stroke and by wings overrunning the span
-        overrun = functools.cache(lambda: _stroke_overrunning_span_mps(dwell(), swing, prf_hz=prf_hz,
+        overrun = functools.cache(lambda: _stroke_overrunning_span_mps(weak(), swing, prf_hz=prf_hz,
                                                                        wavelength_m=wavelength_m, dwell_s=dwell_s))
         as_wings = functools.partial(wings, halfwidth=band.halfwidth, body_velocity=body.velocity, dwell_s=dwell_s,
                                      reach_mps=reach, overrun_mps=overrun)  # each held to the spread of wings

@@ -112,7 +112,7 @@ def _dwell_frame_s(demodulated, *, prf_hz):
 
 def dwell_frames(demodulated, *, prf_hz, noise_power):
     """The dwell's spectrogram read for wings as a whole, of ``FRAME_S`` frames (an eighth of the dwell at most), and
-    its noise level per bin: what :func:`flap_glide_share`, :func:`stroke_swing` and :func:`wing_reach_hz` read."""
+    its noise level per bin: what :func:`flap_glide_share`, :func:`stroke_swing` and :func:`weak_reach_hz` read."""
     return _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
                    frame_s=_dwell_frame_s(demodulated, prf_hz=prf_hz))
 
@@ -444,12 +444,11 @@ def weak_rows(spec, noise_level, *, max_hz=MAX_MICRO_DOPPLER_HZ):
                        f_hz=np.array([f_hz[g].mean() for g in groups]), window_s=spec.window_s, hop_s=spec.hop_s)
 
 
-def wing_reach_hz(spec, noise_level, *, prf_hz):
+def weak_reach_hz(spec, noise_level):
     """How far from the body line (Hz) the rows of :func:`weak_rows`, over the whole span, reach, lit ``WEAK_ROW_DB``
     over the noise in a quarter of the frames of the dwell's spectrogram ``spec`` (:func:`dwell_frames`): the
-    outer edge of the outermost such row. None where fewer than ``MIN_WING_ROWS`` are, or where they reach past
-    ``REACH_SPAN_SHARE`` of the span's half (the reach is then unknown, :func:`overruns_span`: faint blade flashes that
-    fill the span light it so, a quadrotor at 77 GHz to 97 % of it, and so do a gull's wings at 94 GHz).
+    outer edge of the outermost such row. None where fewer than ``MIN_WING_ROWS`` are. Read once, it gives the wings'
+    reach (:func:`wing_reach_hz`) and whether they overrun the span (:func:`overruns_span`).
 
     The dwell's band (:func:`mdpipe.process.spectral.occupied_band`, 10 dB over the smoothed dwell spectrum) misses
     wings that stand a few dB over the noise in each frame, or beat only in bursts (a crow of the evaluation sweep,
@@ -457,32 +456,31 @@ def wing_reach_hz(spec, noise_level, *, prf_hz):
     blades reach on past wings (a quadrotor at K band, its lines 12 dB over the noise, its rows beat at 11.7 Hz
     and, read to 2 kHz only, passed for wings).
     """
-    reach_hz = _weak_reach_hz(spec, noise_level)
-    return reach_hz if reach_hz is not None and reach_hz <= readable_reach_hz(prf_hz) else None
-
-
-def overruns_span(spec, noise_level, *, prf_hz):
-    """Whether the rows of :func:`weak_rows` (see :func:`wing_reach_hz`) reach past ``REACH_SPAN_SHARE`` of the span's
-    half: what lights them moves faster than the span holds, or as fast, and they tell only that."""
-    reach_hz = _weak_reach_hz(spec, noise_level)
-    return reach_hz is not None and reach_hz > readable_reach_hz(prf_hz)
-
-
-def readable_reach_hz(prf_hz):
-    """The farthest reach (Hz from the body line) read as one: ``REACH_SPAN_SHARE`` of the span's half."""
-    return REACH_SPAN_SHARE * prf_hz / 2
-
-
-def _weak_reach_hz(spec, noise_level):
-    """The outer edge (Hz from the body line) of the outermost row of :func:`weak_rows` over the whole span lit
-    ``WEAK_ROW_DB`` over the noise in a quarter of the frames of ``spec``; None where fewer than ``MIN_WING_ROWS``
-    are."""
     rows = weak_rows(spec, noise_level, max_hz=np.inf)
     lit = _lit_mask(rows, noise_level, SIGNAL_ROW_PERCENTILES[-1], off_hz=_body_hz(spec, BODY_LOBE_BINS),
                     lit_db=WEAK_ROW_DB, max_hz=np.inf)
     if lit.sum() < MIN_WING_ROWS:
         return None
     return float(np.abs(rows.f_hz[lit]).max() + WEAK_MERGE_BINS * (spec.f_hz[1] - spec.f_hz[0]) / 2)
+
+
+def wing_reach_hz(weak_hz, *, prf_hz):
+    """The wings' reach (Hz from the body line) of the weak rows' reach ``weak_hz`` (:func:`weak_reach_hz`): itself,
+    or None where there is none or it passes ``REACH_SPAN_SHARE`` of the span's half (the reach is then unknown,
+    :func:`overruns_span`: faint blade flashes that fill the span light it so, a quadrotor at 77 GHz to 97 % of it,
+    and so do a gull's wings at 94 GHz)."""
+    return weak_hz if weak_hz is not None and weak_hz <= readable_reach_hz(prf_hz) else None
+
+
+def overruns_span(weak_hz, *, prf_hz):
+    """Whether the weak rows' reach ``weak_hz`` (:func:`weak_reach_hz`) passes ``REACH_SPAN_SHARE`` of the span's
+    half: what lights them moves faster than the span holds, or as fast, and they tell only that."""
+    return weak_hz is not None and weak_hz > readable_reach_hz(prf_hz)
+
+
+def readable_reach_hz(prf_hz):
+    """The farthest reach (Hz from the body line) read as one: ``REACH_SPAN_SHARE`` of the span's half."""
+    return REACH_SPAN_SHARE * prf_hz / 2
 
 
 def _looks(frames):
