@@ -1733,3 +1733,49 @@ def test_a_chopping_comb_folds_onto_odd_orders_near_an_odd_multiple(prf_hz, fold
     at M = 173.01 (1 bin), past it at 173.03 (3 bins); for M even (172) on the even orders."""
     from mdpipe.process.features import _folds_onto_odd_orders
     assert _folds_onto_odd_orders(100.0, prf_hz=prf_hz, dwell_s=1.0) is folds
+
+
+@pytest.mark.parametrize("prf_hz, folds", [(17301.5, False), (17300.5, True)])
+def test_odd_orders_with_lines_of_their_own_are_no_fold(prf_hz, folds):
+    """A comb at 100 Hz seen 1 s whose even orders and, 10 dB weaker, odd ones are lines of a 2-blade turn, one blade
+    differing (out to 40 orders, within the span). The PRF 1.5 bins over 173 times the comb: a folded chopping comb
+    would stand 1.5 bins off the odd orders, and the lines stand on them: no fold. At 0.5 bins (under a bin) the fold
+    and the lines are not told apart: the guard stands."""
+    from mdpipe.process import combs
+    from mdpipe.process.features import _folds_onto_odd_orders
+    rng = np.random.default_rng(7)
+    n = int(prf_hz)  # 1 s
+    t = np.arange(n) / prf_hz
+    signal = sum((1.0 if k % 2 == 0 else 0.3) * np.exp(2j * np.pi * 100.0 * k * t) for k in range(-40, 41))
+    signal = signal + (rng.normal(size=n) + 1j * rng.normal(size=n)) / np.sqrt(2)
+    lines = combs.line_spectrum(signal, prf_hz=prf_hz, noise_power=1.0)
+    assert _folds_onto_odd_orders(100.0, prf_hz=prf_hz, dwell_s=1.0, lines=lines, half_width_hz=prf_hz / 2) is folds
+
+
+def test_a_blade_differing_near_an_odd_fold_of_the_comb_measures_two_blades(tmp_path):
+    """A hexarotor of the default sweep (scene 196, with its clutter) at X band, seen 0.28 s, N not given: six 2-blade
+    rotors at 68.5 rev/s, one blade 1.66 times the other, tips past the span. The flash times repeat at 136.9 Hz, twice
+    a folded comb at 68.6 Hz whose every second line stands out: a turn of 2 blades, one differing, or an odd N's
+    chopping. The PRF is 104.9 times the comb, 1.9 bins from 105: a chopping comb folded once would fall 1.9 bins off
+    the comb's odd orders, but their first four lines stand on them (2.6 over the scores off them, t 10), and the
+    fold guard had withheld the rotation as `ambiguous_period`. N = 2 measured, the rate within 1 %."""
+    radar = dict(f_start_hz=9.8e9, f_stop_hz=10.05e9, ramp_up_s=0.000111105, chirp_period_s=0.000138881,
+                 sample_rate_hz=1152063.3646370552, n_samples=128, n_chirps=2048, n_channels=4)
+    rates = [68.4942, -68.4987, 68.4959, -68.4895, 68.5231, -68.4568]
+    hexa = {"name": "hexarotor", "type": "multirotor", "elevation_deg": 13.4817, "body_rcs_m2": 0.0607458,
+            "rotors": {"count": 6, "blade_profile": "tapered", "tip_reflectivity": 0.799445, "root_m": 0.01,
+                       "phase_deg": [316.375, 257.937, 190.674, 355.419, 194.105, 174.487],
+                       "blade_rcs_m2": 0.00155726, "rate_wander_fraction": 0.00516072,
+                       "rate_wander_period_s": 2.95487,
+                       "tilt_deg": [-0.11573, -0.0120465, 1.2567, 4.88039, 0.137541, 3.98088], "blades": 2,
+                       "arm_m": 0.592106, "blade_length_m": 0.186423, "rev_per_s": rates,
+                       "blade_gains": [1.0, 1.65524]},
+            "motion": {"position_m": [19.4636, 8.38832, 0.372353], "velocity_mps": [1.55665, 3.28415, 0.0]}}
+    clutter = [{"type": "static", "name": "clutter0", "range_m": 32.6174, "azimuth_deg": 22.3018, "rcs_m2": 0.494369},
+               {"type": "static", "name": "clutter1", "range_m": 32.6174, "azimuth_deg": -36.2354, "rcs_m2": 1.9304}]
+    row = sweep_row(tmp_path, radar, hexa, moving_snr_db=22.7318, seed=2051740672, clutter=clutter,
+                    elevation_deg=13.4817)
+    assert row["class"] == "drone" and row["aliased"]
+    assert row["n_blades"] == 2 and row["n_blades_source"] == "measured"
+    assert row["rotation_rate_hz_status"] == "ok"
+    assert row["rotation_rate_hz"] == pytest.approx(np.mean(np.abs(rates)), rel=0.01)
