@@ -166,32 +166,3 @@ def test_the_first_lines_centre_on_the_rotors_mean_rate():
                 signal += np.exp(2j * np.pi * sign * k * rate_hz * t + 1j * rng.uniform(0, 2 * np.pi))
     rate = combs.first_lines_rate_hz(combs.line_spectrum(signal, prf_hz=prf_hz, noise_power=0.01), 78.0)
     assert rate == pytest.approx(80.0, rel=0.005)
-
-
-def _sampled_comb(amplitudes, *, spacing_hz, prf_hz=7200.0, n=4096, seed=5):
-    """Line scores of lines ``amplitudes[k]`` at ``k spacing_hz`` sampled at ``prf_hz`` (a line past the span folds
-    as the radar's would), in unit complex noise."""
-    rng = np.random.default_rng(seed)
-    t = np.arange(n) / prf_hz
-    signal = sum(a * np.exp(2j * np.pi * k * spacing_hz * t) for k, a in amplitudes.items())
-    signal = signal + (rng.normal(size=n) + 1j * rng.normal(size=n)) / np.sqrt(2)
-    return combs.line_spectrum(signal, prf_hz=prf_hz, noise_power=1.0)
-
-
-# the PRF 1.5 dwell bins (1.76 Hz) over 105 times the spacing: a comb at twice it folds 2.6 Hz off its odd orders
-FOLD_SPACING_HZ = (7200.0 - 1.5 * 7200.0 / 4096) / 105
-FOLD_OFFSET_HZ = 7200.0 - 105 * FOLD_SPACING_HZ
-
-
-def test_odd_orders_of_a_blade_differing_stand_on_the_comb_not_a_fold_off_it():
-    """A turn comb of 2 blades, one differing: even orders, and odd ones 10 dB weaker, out to 40 orders (within the
-    span). The odd orders hold lines of their own, none 1.5 bins off them."""
-    lines = _sampled_comb({k: 1.0 if k % 2 == 0 else 0.3 for k in range(-40, 41)}, spacing_hz=FOLD_SPACING_HZ)
-    assert combs.odd_orders_on_comb(lines, FOLD_SPACING_HZ, FOLD_OFFSET_HZ, half_width_hz=3600.0)
-
-
-def test_odd_orders_fed_by_a_folded_chopping_comb_stand_off_the_comb():
-    """Equal blades' chopping comb at twice the spacing out to 150 orders (10.3 kHz, past the span): folded once by
-    the PRF, its lines fall 1.5 bins off the odd orders of the comb, and score more there than on the orders."""
-    lines = _sampled_comb({k: 1.0 for k in range(-150, 151, 2)}, spacing_hz=FOLD_SPACING_HZ)
-    assert not combs.odd_orders_on_comb(lines, FOLD_SPACING_HZ, FOLD_OFFSET_HZ, half_width_hz=3600.0)

@@ -56,7 +56,6 @@ PARITY_SHARE = 0.5           # blade parity: the flash sides' correlation at the
 DOUBLING_SHARE = 0.5         # flashes doubled: the power's contrast at odd multiples below this share of the even
 MIN_SIDE_CORRELATION = 0.2   # ... of the lag that tells, at least this
 SIDE_INNER = 0.25            # ... read beyond this share of the band (the blades, not the body)
-LOW_ODD_ORDERS = 4           # the first odd orders (1, 3, 5, 7) read for lines of their own against a fold's
 
 
 @dataclass(frozen=True)
@@ -535,25 +534,6 @@ def odd_orders_stand_out(lines, spacing_hz, *, half_width_hz):
     rate whose phases cancel their even orders stand so too."""
     found = _multiples_step(lines, spacing_hz, _pattern_orders(spacing_hz, half_width_hz), 2)
     return found is not None and found[0] <= -PATTERN_MARGIN and found[1] <= -SUBLINE_Z
-
-
-def odd_orders_on_comb(lines, spacing_hz, offset_hz, *, half_width_hz):
-    """Whether the comb's first ``LOW_ODD_ORDERS`` odd orders (each side of 0 Hz, within ``half_width_hz``) hold
-    lines of their own: their scores at ``j spacing_hz`` stand over the larger of those ``offset_hz`` either side,
-    where a comb at twice the spacing folded by the PRF would put its lines (``offset_hz``: the PRF less its nearest
-    odd multiple of the spacing), by ``PATTERN_MARGIN`` on average with a t of ``SUBLINE_Z`` (the differences'
-    standard error over the orders). A folded line ``offset_hz`` off an order scores less at the order than at itself
-    (a Hann line 1 bin off by 6 dB); a line on the order, more.
-    """
-    order = _pattern_orders(spacing_hz, half_width_hz)
-    odd = order[order % 2 == 1][:LOW_ODD_ORDERS].astype(float)
-    if len(odd) < LOW_ODD_ORDERS:
-        return False
-    freqs_hz = np.concatenate([odd, -odd]) * spacing_hz
-    gap = lines.at(freqs_hz) - np.maximum(lines.at(freqs_hz + offset_hz), lines.at(freqs_hz - offset_hz))
-    spread = float(np.std(gap, ddof=1))
-    mean = float(np.mean(gap))
-    return bool(mean >= PATTERN_MARGIN and (spread == 0 or mean / (spread / np.sqrt(len(gap))) >= SUBLINE_Z))
 
 
 def _pattern_orders(spacing_hz, half_width_hz):

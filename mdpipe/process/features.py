@@ -58,7 +58,6 @@ TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats th
 DRIFTING_REPEAT = 0.6        # rotors at one rate repeat their echo each turn as one rotor does (0.86-0.99 of the
                              # signal's power); under this share they drift through each other's phases
 HANN_LOBE_BINS = 2.0         # a line reaches this many bins either side of it (a Hann window's main lobe)
-FOLD_RESOLVED_BINS = 1.0     # a folded line this far off a comb order is told from one on it (Hann: 6 dB down)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 WIDE_BAND_SHARE = 0.75       # an unaliased band over this share of the span decorrelates within a chirp
 MAX_RAMP_DIVISOR = 6         # a power period not whole within the ramp: its halves to sixths are tried there
@@ -786,8 +785,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             known = n_blades if n_blades is not None else measured_n
             if known is None and alternate(1.0 / timed_hz):  # the flashes alternate range sides: an odd N
                 known, alternating = ASSUMED_ODD_BLADES, True
-            if known is None and pattern == 2 and not _folds_onto_odd_orders(
-                    float(chopping_hz[0]), prf_hz=prf_hz, dwell_s=dwell_s, lines=lines, half_width_hz=count_band_hz):
+            if known is None and pattern == 2 and not _folds_onto_odd_orders(float(chopping_hz[0]), prf_hz=prf_hz,
+                                                                             dwell_s=dwell_s):
                 # every second line of the comb stands out: the turn of 2 blades, one differing, which flash together
                 # twice a turn (the flash times); an odd N's equal blades line their chopping comb without that step
                 known = measured_n = 2
@@ -1211,26 +1210,17 @@ def _rotors_drift_on_comb(micro, lines, spacing_hz, turn_repeat, *, noise_power)
     return centre_hz is not None and _agrees(centre_hz / spacing_hz)
 
 
-def _folds_onto_odd_orders(spacing_hz, *, prf_hz, dwell_s, lines=None, half_width_hz=None):
+def _folds_onto_odd_orders(spacing_hz, *, prf_hz, dwell_s):
     """Whether a chopping comb at twice ``spacing_hz``, folded once, falls on the odd orders of the comb at it: the
     PRF lies within ``HANN_LOBE_BINS`` dwell-spectrum bins (``1 / dwell_s``) of an odd multiple M of ``spacing_hz``,
     and its m-th line folds to ``(2 m - M)`` times it. Every second line of that comb standing out is then what equal
     blades' chopping lines show over their own folded ones: four equal 2-blade rotors at 77 GHz, their tips folded
     twice, the PRF 172.93 times their 135.5 Hz turn (1.5 bins from 173), stepped every second line of a comb at
     135.5 Hz, and N = 2 was read as measured where the echo does not tell it (4 blades at half the rate look alike).
-    Where the PRF lies ``FOLD_RESOLVED_BINS`` or more off that multiple, the folded lines stand that far off the odd orders: odd orders
-    whose first lines stand on them and not there (on the dwell's line scores ``lines``, within ``half_width_hz``,
-    :func:`mdpipe.process.combs.odd_orders_on_comb`) are lines of their own, a blade differing (six 2-blade X-band
-    rotors at 68.5 rev/s, one blade 1.66 times the other, the PRF 105 turn rates less 1.9 bins).
     """
     ratio = prf_hz / spacing_hz
     nearest_odd = 2 * np.floor(ratio / 2) + 1
-    offset_hz = prf_hz - nearest_odd * spacing_hz
-    offset_bins = abs(offset_hz) * dwell_s
-    if offset_bins >= HANN_LOBE_BINS:
-        return False
-    return not (lines is not None and offset_bins >= FOLD_RESOLVED_BINS
-                and combs.odd_orders_on_comb(lines, spacing_hz, offset_hz, half_width_hz=half_width_hz))
+    return bool(abs(ratio - nearest_odd) * spacing_hz * dwell_s < HANN_LOBE_BINS)
 
 
 def _pattern_on_rotors_apart(lines, spacing_hz, pattern, *, band_hz):
