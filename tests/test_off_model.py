@@ -1733,3 +1733,25 @@ def test_a_chopping_comb_folds_onto_odd_orders_near_an_odd_multiple(prf_hz, fold
     at M = 173.01 (1 bin), past it at 173.03 (3 bins); for M even (172) on the even orders."""
     from mdpipe.process.features import _folds_onto_odd_orders
     assert _folds_onto_odd_orders(100.0, prf_hz=prf_hz, dwell_s=1.0) is folds
+
+
+def test_a_bird_whose_power_ripples_between_slow_swells_has_no_flash_times(tmp_path):
+    """A pigeon of the seed 4321 draw of the default sweep (scene 229, with its clutter) at 94 GHz, PRF 3.4 kHz,
+    seen 1.67 s: flapping 1.58 s, gliding 0.75 s, its wing band folded over the span. Events of its power repeat
+    every 7.5 chirps, as flash times 457 Hz apart would, and it was called a drone (`assumed_blades`). Its power
+    varies slowly with the wings' stroke: its autocorrelation stands 0.24 or more within half a period of 7.5
+    chirps, where blade flashes fall to the floor (under -0.02 for the drones of four sweeps). No flash times: a
+    bird, beating 6.85 Hz within 1 %."""
+    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.1e9, ramp_up_s=0.000232612, chirp_period_s=0.000290765,
+                 sample_rate_hz=550272.5574261002, n_samples=128, n_chirps=5758, n_channels=1)
+    pigeon = {"name": "pigeon", "type": "bird", "a1_deg": 42.1176, "a2_deg": 36.4391,
+              "flap_glide": {"flap_s": 1.57537, "glide_s": 0.747577}, "wingbeat_drift_fraction": 0.0141746,
+              "wing_roughness": 0.233635, "wingbeat_hz": 6.84509, "upper_arm_m": 0.149108, "forearm_m": 0.15561,
+              "body_rcs_m2": 0.00378557, "wing_rcs_m2": 0.008241,
+              "motion": {"position_m": [70.9423, -2.17385, 11.8095], "velocity_mps": [-10.4805, 0.654967, 0.0]}}
+    clutter = [{"type": "static", "name": "clutter0", "range_m": 50.9038, "azimuth_deg": -22.3851, "rcs_m2": 1.61135},
+               {"type": "static", "name": "clutter1", "range_m": 3.33626, "azimuth_deg": 20.0755, "rcs_m2": 0.128945},
+               {"type": "static", "name": "clutter2", "range_m": 68.7666, "azimuth_deg": -35.5883, "rcs_m2": 5.64772}]
+    row = sweep_row(tmp_path, radar, pigeon, moving_snr_db=9.96616, seed=322572270, clutter=clutter)
+    assert row["chopping_freq_hz"] is None and row["chopping_freq_hz_status"] == "no_flashes"
+    assert_wingbeat(row, 6.84509, rel=0.01)

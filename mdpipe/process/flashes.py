@@ -141,7 +141,8 @@ def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s, noise_powe
 
     Periods under ``MIN_PERIOD_CHIRPS`` are not searched: local maxima of any fluctuating power fall every
     2-3 chirps (an aliased wing band, its energy near PRF/2 after the difference, read as flashes every
-    2.04 chirps: a bird called a drone).
+    2.04 chirps: a bird called a drone). Nor is a period taken where the power does not fall to its floor between
+    the events (:func:`_falls_between`): the events then ride a power that swells and ebbs.
     """
     min_period_s = max(min_period_s, MIN_PERIOD_CHIRPS / prf_hz)
     events = flash_events(np.abs(micro_signal) ** 2, noise_power=noise_power)
@@ -172,7 +173,23 @@ def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s, noise_powe
     piled = longest / ambiguous if ambiguous else period  # where the pairs pile up
     if _stronger_elsewhere(times, piled, n, sigmas=sigmas_longest, shortest=min_period_s * prf_hz, longest=longest):
         return None
+    if not _falls_between(np.abs(micro_signal) ** 2, period):
+        return None
     return FlashPeriod(period_s=period / prf_hz, ambiguous=ambiguous)
+
+
+def _falls_between(power, period):
+    """Whether ``power`` falls to an uncorrelated floor between events ``period`` lags (chirps) apart, as flashes'
+    does: its signed autocorrelation, at its least within half a period either side of the period, stays under
+    ``POWER_BASELINE``. A power that varies slowly (the wings' echo over flapping and gliding) correlates over the
+    whole period: a 94 GHz pigeon's wing band, folded over a span of 3.4 kHz, lifted events every 7.5 chirps (flash
+    times at 457 Hz: it was called a drone) where its power's autocorrelation stood 0.24 or more at every lag within
+    half a period; at the 119 flash periods read on drones of the default, seed 777, seed 4321 and held-out sweeps,
+    it dips under -0.02.
+    """
+    r = autocorrelation(power, signed=True)
+    lag = int(round(period))
+    return bool(np.min(r[max(1, lag - lag // 2):min(len(r), lag + lag // 2 + 1)]) < POWER_BASELINE)
 
 
 def _stronger_elsewhere(times, period, n_samples, *, sigmas, shortest, longest):
