@@ -340,9 +340,9 @@ def test_a_partial_repeat_within_a_period_is_not_taken_for_the_flashes():
 
 def test_a_power_that_varies_slowly_does_not_fall_between_its_repeats():
     """Short flashes every 7.5 chirps (30 times the noise floor) fall to the floor between them: the power's
-    autocorrelation dips under 0.1 within half a period of the period. A wing echo lit 1.5 s and dark 0.75 s (a
-    flap-glide bird, 20 times the noise), rippling 30 % every 7.5 chirps, correlates 0.35 or more at every lag
-    there: its repeat is no flash train."""
+    autocorrelation dips under 0.1 within half a period of the period, and so it does where the whole echo is lit
+    1.5 s and dark 0.75 s. A wing echo lit so (a flap-glide bird, 20 times the noise), rippling 30 % every 7.5
+    chirps, correlates 0.35 or more at every lag there: its repeat is no flash train."""
     prf_hz, n, period = 3439.2, 5758, 7.5
     t = np.arange(n) / prf_hz
     floor = np.abs(_noise(n, seed=5)) ** 2
@@ -350,4 +350,5 @@ def test_a_power_that_varies_slowly_does_not_fall_between_its_repeats():
     pulses[np.round(np.arange(0, n - 1, period)).astype(int)] = 1.0
     assert flashes._falls_between(floor + 30 * pulses, period)
     lit = np.where(t % 2.25 < 1.5, 1.0, 0.05)
+    assert flashes._falls_between(lit * (floor + 30 * pulses), period)  # the whole echo swelling: still flashes
     assert not flashes._falls_between(floor + 20 * lit * (1 + 0.3 * np.cos(2 * np.pi * np.arange(n) / period)), period)

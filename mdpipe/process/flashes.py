@@ -40,7 +40,7 @@ MIN_PERIOD_CHIRPS = 4.0     # events are local maxima, at least 2 chirps apart: 
 POWER_SIGMAS = 6.0          # the power's autocorrelation peak over its median in the lags searched, in standard errors
                             # of a power correlated over the lags below them (Bartlett)
 POWER_BASELINE = 0.1        # ... standing on an autocorrelation this close to 0 (the power between flashes is
-                            # uncorrelated)
+                            # uncorrelated); flash times too (:func:`_falls_between`)
 AROUND_PERIOD = 0.5         # ... and over the median of the lags within this share of a period of its own
 POWER_PEAK_WIDTH = 0.2      # ... and no wider at half its prominence than this share of its lag: flashes are short
 POWER_RECUR_SHARE = 0.25    # ... recurring at 2T and 3T with this share of its prominence: six flash trains whose
@@ -145,7 +145,8 @@ def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s, noise_powe
     the events (:func:`_falls_between`): the events then ride a power that swells and ebbs.
     """
     min_period_s = max(min_period_s, MIN_PERIOD_CHIRPS / prf_hz)
-    events = flash_events(np.abs(micro_signal) ** 2, noise_power=noise_power)
+    power = np.abs(micro_signal) ** 2
+    events = flash_events(power, noise_power=noise_power)
     times = np.flatnonzero(events).astype(float)
     if len(times) < MIN_EVENTS or len(np.unique(times * COVERAGE_PARTS // len(events))) < COVERAGE_PARTS:
         return None  # a rotor flashes all through the dwell; a burst of glitches does not
@@ -173,19 +174,23 @@ def flash_period(micro_signal, *, prf_hz, min_period_s, max_period_s, noise_powe
     piled = longest / ambiguous if ambiguous else period  # where the pairs pile up
     if _stronger_elsewhere(times, piled, n, sigmas=sigmas_longest, shortest=min_period_s * prf_hz, longest=longest):
         return None
-    if not _falls_between(np.abs(micro_signal) ** 2, period):
+    if not _falls_between(power, period):
         return None
     return FlashPeriod(period_s=period / prf_hz, ambiguous=ambiguous)
 
 
 def _falls_between(power, period):
-    """Whether ``power`` falls to an uncorrelated floor between events ``period`` lags (chirps) apart, as flashes'
-    does: its signed autocorrelation, at its least within half a period either side of the period, stays under
-    ``POWER_BASELINE``. A power that varies slowly (the wings' echo over flapping and gliding) correlates over the
-    whole period: a 94 GHz pigeon's wing band, folded over a span of 3.4 kHz, lifted events every 7.5 chirps (flash
+    """Whether ``power`` falls to an uncorrelated floor between events ``period`` lags (chirps, 2 or more: the flash
+    period read, or where an ambiguity leaves it, the longer of the two) apart, as flashes' does: its signed
+    autocorrelation, at its least over the lags within half the period (rounded) either side of it, stays under
+    ``POWER_BASELINE``. A flash train whose whole echo swells and ebbs slowly still falls to the floor between its
+    flashes (the echo scaled, not lifted); a power that varies slowly under the events correlates over the whole
+    period: a 94 GHz pigeon's wing band, folded over a span of 3.4 kHz, lifted events every 7.5 chirps (flash
     times at 457 Hz: it was called a drone) where its power's autocorrelation stood 0.24 or more at every lag within
     half a period; at the 119 flash periods read on drones of the default, seed 777, seed 4321 and held-out sweeps,
-    it dips under -0.02.
+    it dips under -0.02. Flashes riding a slowly ramping line that the difference leaves 3-14 dB under them (a
+    residual body line off its demodulation, its power quadrupling over the dwell) stand 0.1-0.35 there, and are not
+    read either (in synthetic trains; none such in the sweeps or `make offmodel`).
     """
     r = autocorrelation(power, signed=True)
     lag = int(round(period))
