@@ -1755,3 +1755,19 @@ def test_a_bird_whose_power_ripples_between_slow_swells_has_no_flash_times(tmp_p
     row = sweep_row(tmp_path, radar, pigeon, moving_snr_db=9.96616, seed=322572270, clutter=clutter)
     assert row["chopping_freq_hz"] is None and row["chopping_freq_hz_status"] == "no_flashes"
     assert_wingbeat(row, 6.84509, rel=0.01)
+
+
+def test_a_point_crossing_the_beam_lights_no_wings_with_its_window_leakage(tmp_path):
+    """A point of the seed 4321 draw of the default sweep (scene 134, clutter left out) crossing an X-band beam at
+    6.3 m/s, 15 m away: its line, 55-65 dB per frame, drifts 120 Hz over 0.68 s. Its Hann sidelobes light rows 2-4
+    bins off it, whose level swings as the track's residual moves the line within its bin: read as a wingbeat at
+    11.6 Hz, a bird. It neither flies nor travels in range: its wing rows must stand over what its own line's leakage
+    can light there (15-25 dB under that), and none do: no wingbeat, `none`."""
+    radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=5.03145e-05, chirp_period_s=6.28931e-05,
+                 sample_rate_hz=1271999.1267726005, n_samples=64, n_chirps=10802, n_channels=2)
+    point = {"name": "moving_point", "type": "point", "rcs_m2": 0.0189626,
+             "motion": {"position_m": [7.007, 3.39568, 13.1726], "velocity_mps": [-0.763676, -6.26939, 0.0]}}
+    row = sweep_row(tmp_path, radar, point, moving_snr_db=20.322, seed=1557779379)
+    assert row["wingbeat_freq_hz"] is None and row["wingbeat_freq_hz_status"] == "no_wingbeat"
+    assert row["class"] == "none"
+

@@ -181,6 +181,48 @@ def test_a_fast_wingbeat_under_four_frames_is_read_again_in_shorter_frames():
     assert 1.0 / found.period_s == pytest.approx(14.0, rel=0.02)
 
 
+def wobbling_line_echo(wobble_hz, *, line_db=63.0, prf_hz=2000.0, dwell_s=2.0, seed=1):
+    """A line at 0 Hz, ``line_db`` over the noise in its bin of a 64 ms Hann frame (amplitude a: a^2 (N / 2)^2
+    against 3 N / 8, N chirps a frame), its Doppler wobbling +-0.35 bin at ``wobble_hz`` (a body track's residual: a
+    point crossing the beam), and noise of power 1 a chirp."""
+    n = int(prf_hz * dwell_s)
+    t_s = np.arange(n) / prf_hz
+    bin_hz = prf_hz / int(round(wingbeat.FRAME_S * prf_hz))
+    phase = 2 * np.pi * np.cumsum(0.35 * bin_hz * np.sin(2 * np.pi * wobble_hz * t_s)) / prf_hz
+    rng = np.random.default_rng(seed)
+    noise = (rng.normal(size=n) + 1j * rng.normal(size=n)) / np.sqrt(2)
+    amplitude = np.sqrt(10 ** (line_db / 10) * 1.5 / (wingbeat.FRAME_S * prf_hz))
+    return amplitude * np.exp(1j * phase) + noise
+
+
+@pytest.mark.parametrize("wobble_hz", [4.0, 11.0])
+def test_a_line_wobbling_within_its_bin_lights_no_wings_of_a_still_body(wobble_hz):
+    """A line 63 dB over the noise in its bin (PRF 2 kHz, 2 s), its Doppler wobbling +-0.35 bin: its Hann sidelobes
+    light 6 rows 2-4 bins off it, whose level swings with the wobble, and they repeat at its rate as wings would
+    (read so for a body that flies: its wing rows are read as they are). For a body that neither flies nor travels
+    (``still``), a wing row stands over what its own line's leakage could light there (Hann's envelope half a bin
+    nearer, under the line's peak): these stand 6-11 dB under that, no wing rows, no wingbeat."""
+    echo = wobbling_line_echo(wobble_hz)
+    flying = wingbeat.wing_frames(echo, prf_hz=2000.0, noise_power=1.0, frame_s=wingbeat.FRAME_S)
+    assert not flying.weak and flying.wing_rows() >= 6
+    found = wingbeat.wingbeat(echo, prf_hz=2000.0, noise_power=1.0)
+    assert 1.0 / found.period_s == pytest.approx(wobble_hz, rel=0.01)
+    still = wingbeat.wing_frames(echo, prf_hz=2000.0, noise_power=1.0, frame_s=wingbeat.FRAME_S, still=True)
+    assert still.wing_rows() == 0
+    assert wingbeat.wingbeat(echo, prf_hz=2000.0, noise_power=1.0, still=True) is None
+
+
+@pytest.mark.parametrize("wingbeat_hz", [8.0, 14.0])
+def test_wings_beyond_the_body_line_s_leakage_are_read_for_a_still_body(wingbeat_hz):
+    """Sparrows beating 8 and 14 Hz at X band (PRF 2 kHz, 2 s), their wings 10 dB over the noise: 6 and 11 of their
+    8 and 13 wing rows stand over what their body line's leakage could light; read on those for a body that neither
+    flies nor travels, the wingbeat is as for one that flies. (One beating 4 Hz, its 4 wing rows 2-3 bins off a body
+    line 39 dB up, keeps none over it: a still bird so slow and near its line reads no wingbeat.)"""
+    echo, noise_power, band_hz = sparrow_echo(wingbeat_hz, f0_hz=10e9, prf_hz=2000.0, dwell_s=2.0, snr_db=10.0, seed=0)
+    found = wingbeat.wingbeat(echo, prf_hz=2000.0, noise_power=noise_power, band_hz=band_hz, still=True)
+    assert 1.0 / found.period_s == pytest.approx(wingbeat_hz, rel=0.01)
+
+
 @pytest.mark.parametrize("band_hz, seed", [(10.0, 3), (10.0, 21), (10.0, 31), (20.0, 38)])
 def test_bursts_of_slow_speckle_are_no_wingbeat(band_hz, seed):
     """Bursts (1 s on, 0.6 s off) of speckle 10-20 Hz wide in three bands 60 Hz apart, 20 dB over the noise:

@@ -1376,11 +1376,12 @@ def _edges_resolved(micro, edges, *, prf_hz, noise_power, hop_fraction, longest_
     return again, ""
 
 
-def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
+def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None, still=False):
     """Wingbeat frequency (Hz) of a bird's body-demodulated echo, from two wingbeats in the dwell on; given as
     ``ambiguous_period`` where two looks read it an octave apart, or a stroke side's rows repeat at twice the period
-    read (:class:`~mdpipe.process.wingbeat.Octave`)."""
-    beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz)
+    read (:class:`~mdpipe.process.wingbeat.Octave`). ``still``: the body neither flies nor travels, its wing rows read
+    over its line's leakage (:func:`~mdpipe.process.wingbeat.wing_frames`)."""
+    beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz, still=still)
     if isinstance(beat, Octave):
         why = (f"the wing rows repeat every {beat.short_s:.3g} s, those of one stroke side every {beat.period_s:.3g} s "
                "only (the two strokes alike: a dwell of more beats would tell)" if beat.by_sides else
@@ -1395,11 +1396,11 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None):
     return withheld("dwell_short" if dwell_s < 2.0 / MAX_WINGBEAT_HZ else "no_wingbeat", note)
 
 
-def flapping(dwell):
+def flapping(dwell, *, still=False):
     """The share of the dwell a bird flaps, gliding between bursts (:func:`~mdpipe.process.wingbeat.flap_glide_share`
-    on ``dwell``, the dwell's spectrogram and noise level: :func:`~mdpipe.process.wingbeat.dwell_frames`), or withheld
-    as ``no_glide``."""
-    share = flap_glide_share(*dwell)
+    on ``dwell``, the dwell's spectrogram and noise level: :func:`~mdpipe.process.wingbeat.dwell_frames`; ``still``: the
+    body neither flies nor travels), or withheld as ``no_glide``."""
+    share = flap_glide_share(*dwell, still=still)
     if share is None:
         return withheld("no_glide", "")
     return Measured(share)
@@ -1611,9 +1612,10 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                                                        wavelength_m=wavelength_m, dwell_s=dwell_s))
         as_wings = functools.partial(wings, halfwidth=band.halfwidth, body_velocity=body.velocity, dwell_s=dwell_s,
                                      reach_mps=reach, overrun_mps=overrun)  # each held to the spread of wings
+        still = not _least_wing_spread_mps(body.velocity, dwell_s=dwell_s)[0]  # its wings stand over its leakage
         beat = as_wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
-                                      band_hz=2 * band.half_width_hz))
-        flaps = flapping(dwell())
+                                      band_hz=2 * band.half_width_hz, still=still))
+        flaps = flapping(dwell(), still=still)
         flaps = as_wings(flaps, described=flaps.value is not None and f"a micro-Doppler in bursts over "
                          f"{flaps.value:.0%} of the dwell, dark between them,")
         stroke = wing_stroke(swing, body_velocity=body.velocity, dwell_s=dwell_s)

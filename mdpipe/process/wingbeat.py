@@ -68,6 +68,7 @@ WEAK_MERGE_BINS = 4           # where fewer than MIN_WING_ROWS rows are lit: the
 WEAK_ROW_DB = 3.0             # ... and a cell lit this far over the noise (noise's 4-bin mean passes it in 6 % of
                               # the frames, its 75th percentile over a dwell's frames 1.3x the noise: never)
 LEAKAGE_DB = -10.0            # ... from where the body line's window leakage falls this far under the noise
+SCALLOP_LOSS_DB = 1.42        # a line half a bin off its bin reads this much under its peak there (Hann)
 SIDE_REPEAT = 0.5             # a stroke side's rows repeating at T under this, ...
 SIDE_DOUBLE_SHARE = 0.15      # ... and at 2T this much more: T is half the wingbeat's period
 REACH_SPAN_SHARE = 0.8        # weak rows' reach is read only where it ends within this share of the span's half
@@ -85,12 +86,16 @@ def _frames_per_window(spec):
     return int(round(spec.window_s / spec.hop_s))
 
 
-def _lit_mask(spec, noise_level, row_percentile, *, off_hz=-1.0, lit_db=SIGNAL_ROW_DB, max_hz=MAX_MICRO_DOPPLER_HZ):
+def _lit_mask(spec, noise_level, row_percentile, *, off_hz=-1.0, lit_db=SIGNAL_ROW_DB, max_hz=MAX_MICRO_DOPPLER_HZ,
+              floor=None):
     """Which Doppler rows of ``spec``, within ``max_hz`` and beyond ``off_hz``, are lit (:func:`_lit_level`) in
-    ``100 - row_percentile`` % of the frames."""
+    ``100 - row_percentile`` % of the frames, and above ``floor`` (a power per row) there where given."""
     distance_hz = np.abs(spec.f_hz)
     mask = (distance_hz <= max_hz) & (distance_hz > off_hz)
-    mask[mask] = np.percentile(spec.power[mask], row_percentile, axis=1) > _lit_level(noise_level, lit_db)
+    level = _lit_level(noise_level, lit_db)
+    if floor is not None:
+        level = np.maximum(level, floor[mask])
+    mask[mask] = np.percentile(spec.power[mask], row_percentile, axis=1) > level
     return mask
 
 
@@ -252,7 +257,7 @@ def _period(r, *, frame_rate, frames_per_window):
     return found
 
 
-def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
+def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None, still=False):
     """Wingbeat period of a body-demodulated echo (noise ``noise_power`` per chirp): a
     :class:`~mdpipe.process.periodicity.Period`, an :class:`Octave` (two looks an octave apart, or a stroke side's
     rows repeating at twice the period read: :func:`_signed_double`), or None.
@@ -266,19 +271,20 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None):
     it: a 14.6 Hz beat read 7.6 % off in 63 ms frames); T where it confirms T over two frames, finds none,
     or cannot be shorter; an :class:`Octave` where it finds 2 T (an X-band bird of the offmodel benchmark beating
     3.89 Hz read 7.78 Hz in 64 ms frames, 3.91 Hz in 32 ms ones); none where it finds another period. The second look
-    reads its rows as the first did (each bin, or averaged for weak wings: :func:`wing_frames`).
+    reads its rows as the first did (each bin, or averaged for weak wings: :func:`wing_frames`). ``still``: the body
+    neither flies nor travels; its wing rows stand over its line's leakage (:func:`wing_frames`).
     """
     frame_s = _dwell_frame_s(demodulated, prf_hz=prf_hz)
     if band_hz:
         frame_s = min(frame_s, max(MIN_FRAME_S, BAND_BINS / band_hz))
-    frames = wing_frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
+    frames = wing_frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s, still=still)
     if frames.wing_rows() < MIN_WING_ROWS:
         return None
-    found = _two_looks(demodulated, frames, prf_hz=prf_hz, noise_power=noise_power)
+    found = _two_looks(demodulated, frames, prf_hz=prf_hz, noise_power=noise_power, still=still)
     return _signed_double(found, frames) if isinstance(found, Period) else found
 
 
-def _two_looks(demodulated, frames, *, prf_hz, noise_power):
+def _two_looks(demodulated, frames, *, prf_hz, noise_power, still):
     """The period :func:`_looks` reads in ``frames``, read again in shorter frames where it spans under
     ``BLURRED_FRAMES`` of them (see :func:`wingbeat`): a Period, an :class:`Octave`, or None."""
     found = _looks(frames)
@@ -286,7 +292,7 @@ def _two_looks(demodulated, frames, *, prf_hz, noise_power):
     if found is None or found.period_s >= BLURRED_FRAMES * window_s:
         return found
     shorter = wing_frames(demodulated, prf_hz=prf_hz, noise_power=noise_power,
-                          frame_s=max(MIN_FRAME_S, found.period_s / BLURRED_FRAMES), weak=frames.weak)
+                          frame_s=max(MIN_FRAME_S, found.period_s / BLURRED_FRAMES), weak=frames.weak, still=still)
     if shorter.spec.window_s >= window_s:  # no shorter frame (8 chirps at least)
         return found
     again = _looks(shorter)
@@ -362,42 +368,57 @@ def _signed_double(found, frames):
 class WingFrames:
     """A spectrogram read for wings: ``spec`` (its rows each a Doppler bin, or bins averaged), the noise level per bin
     ``noise_level``, ``lit_db`` how far above it a cell is lit, ``off_hz`` how far from 0 Hz the wing rows lie
-    (beyond the body line), and whether the rows are the weak look's (:func:`weak_rows`)."""
+    (beyond the body line), whether the rows are the weak look's (:func:`weak_rows`), and ``floor``, a power per row
+    that a wing row stands over besides (:func:`leakage_floor`), or None."""
 
     spec: object
     noise_level: float
     lit_db: float
     off_hz: float
     weak: bool
+    floor: object = None
 
     @property
     def frame_rate(self):
         return 1.0 / self.spec.hop_s
 
     def lit_rows(self, row_percentile, *, wings_only=False):
-        """The rows lit in ``100 - row_percentile`` % of the frames (off the body line only, ``wings_only``)."""
-        return _lit_rows(self.spec, self.noise_level, row_percentile, off_hz=self.off_hz if wings_only else -1.0,
-                         lit_db=self.lit_db)
+        """The rows lit in ``100 - row_percentile`` % of the frames (off the body line and over ``floor`` only,
+        ``wings_only``)."""
+        if not wings_only:
+            return _lit_rows(self.spec, self.noise_level, row_percentile, lit_db=self.lit_db)
+        return self.spec.power[_lit_mask(self.spec, self.noise_level, row_percentile, off_hz=self.off_hz,
+                                         lit_db=self.lit_db, floor=self.floor)]
 
     def wing_rows(self):
         """How many rows off the body line are lit in a quarter of the frames."""
         return len(self.lit_rows(SIGNAL_ROW_PERCENTILES[-1], wings_only=True))
 
 
-def wing_frames(demodulated, *, prf_hz, noise_power, frame_s, weak=None, body_bins=BODY_LOBE_BINS):
+def wing_frames(demodulated, *, prf_hz, noise_power, frame_s, weak=None, body_bins=BODY_LOBE_BINS, still=False):
     """The spectrogram of ``frame_s`` frames (hop a quarter of it) read for wings (:class:`WingFrames`), the wing
     rows lying ``body_bins`` Doppler bins off 0 Hz or more.
 
     Its rows as they are, a cell lit ``SIGNAL_ROW_DB`` over the noise; or, ``weak`` (by default: where fewer than
-    ``MIN_WING_ROWS`` wing rows are lit so), :func:`weak_rows`, a cell lit ``WEAK_ROW_DB`` over the noise.
+    ``MIN_WING_ROWS`` wing rows are lit so), :func:`weak_rows`, a cell lit ``WEAK_ROW_DB`` over the noise (those start
+    beyond the body line's leakage).
+
+    ``still``: a body that neither flies nor travels in the dwell (a bird hovering or crossing the beam, a point
+    crossing it, a swaying branch). Its wing rows (each bin) stand, besides, over what its own line's window leakage
+    can light there (:func:`leakage_floor`). A strong line's Hann sidelobes light rows a few bins off it, and their
+    level swings as the body track's residual moves the line within its bin: an X-band point crossing the beam at
+    55-65 dB per frame lit six rows 2-4 bins off it so, 15-25 dB under that floor, which beat like wings at 11.6 Hz; a
+    branch swaying 10 cm at 2.8 Hz, likewise. A flying body's wing rows are read as they are (a body that flies is no
+    branch and no crossing point).
     """
     spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
-    return _read_for_wings(spec, noise_level, weak=weak, body_bins=body_bins)
+    return _read_for_wings(spec, noise_level, weak=weak, body_bins=body_bins, still=still)
 
 
-def _read_for_wings(spec, noise_level, *, weak, body_bins):
+def _read_for_wings(spec, noise_level, *, weak, body_bins, still=False):
     """:func:`wing_frames` of a spectrogram ``spec`` (noise ``noise_level`` per bin)."""
-    fine = WingFrames(spec, noise_level, SIGNAL_ROW_DB, _body_hz(spec, body_bins), weak=False)
+    fine = WingFrames(spec, noise_level, SIGNAL_ROW_DB, _body_hz(spec, body_bins), weak=False,
+                      floor=leakage_floor(spec) if still else None)
     if weak is None:
         weak = fine.wing_rows() < MIN_WING_ROWS
     if not weak:
@@ -413,6 +434,24 @@ def hann_leakage(bins):
     return 1.0 / (np.pi * k * (k ** 2 - 1)) ** 2
 
 
+def _body_peak_power(spec):
+    """The body line's power at 0 Hz: its bins there (the centre one and its neighbours) at their highest in each
+    frame, at the 95th percentile over the frames."""
+    centre = int(np.argmin(np.abs(spec.f_hz)))
+    return float(np.percentile(spec.power[max(centre - 1, 0):centre + 2].max(axis=0), 95))
+
+
+def leakage_floor(spec):
+    """The power the body line's window leakage can put in each Doppler row of ``spec``, 2 bins or more off 0 Hz (0
+    nearer: the line's own main lobe): Hann's sidelobe envelope (:func:`hann_leakage`) half a bin nearer than the
+    row (the line anywhere within its bin) under the line's peak, its power (:func:`_body_peak_power`) read up by
+    ``SCALLOP_LOSS_DB`` (the bins' highest lies that much under the line's peak where the line falls between two)."""
+    bins = np.abs(spec.f_hz) / (spec.f_hz[1] - spec.f_hz[0])
+    envelope = hann_leakage(np.maximum(bins - 0.5, 1.5))
+    peak = _body_peak_power(spec) * 10 ** (SCALLOP_LOSS_DB / 10)
+    return np.where(bins >= 2 - 1e-9, peak * envelope, 0.0)
+
+
 def weak_rows(spec, noise_level, *, max_hz=MAX_MICRO_DOPPLER_HZ):
     """``spec`` with the rows of weak wings averaged ``WEAK_MERGE_BINS`` bins at a time: a wing lit a few dB over the
     noise in each bin (a crow at -7.8 dB per IF sample, K band: its wing rows 2-6 dB up in a quarter of the 64 ms
@@ -425,8 +464,7 @@ def weak_rows(spec, noise_level, *, max_hz=MAX_MICRO_DOPPLER_HZ):
     """
     f_hz = spec.f_hz
     centre = int(np.argmin(np.abs(f_hz)))
-    body = spec.power[max(centre - 1, 0):centre + 2]
-    body_db = 10 * np.log10(np.percentile(body.max(axis=0), 95) / noise_level + np.finfo(float).tiny)
+    body_db = 10 * np.log10(_body_peak_power(spec) / noise_level + np.finfo(float).tiny)
     first = 2
     while first < len(f_hz) and body_db + 10 * np.log10(hann_leakage(first - 0.5)) > LEAKAGE_DB:  # body half a bin off
         first += 1
@@ -634,12 +672,13 @@ def _gated_period(frames):
     return found if found.strength >= needed else None
 
 
-def flap_glide_share(spec, noise_level):
+def flap_glide_share(spec, noise_level, *, still=False):
     """The share of the dwell a bird flaps, where it glides between flapping bursts; None where it does not.
 
     On the dwell's spectrogram ``spec`` (:func:`dwell_frames`; ``noise_level`` per bin), the wing rows are those within
-    ``MAX_MICRO_DOPPLER_HZ`` lit in a quarter of the frames and off the body line (``BODY_BINS`` of 0 Hz),
-    ``MIN_WING_ROWS`` of them at least; :func:`flapping_frames` marks where they flap. A glide is frames not
+    ``MAX_MICRO_DOPPLER_HZ`` lit in a quarter of the frames and off the body line (``BODY_BINS`` of 0 Hz; for a
+    ``still`` body, over its line's leakage too: :func:`wing_frames`), ``MIN_WING_ROWS`` of them at least;
+    :func:`flapping_frames` marks where they flap. A glide is frames not
     flapping in ``MIN_GLIDE_SHARE`` of the dwell at least (and flapping in as much), in which the wing rows' median
     power falls ``GLIDE_DROP_DB`` under its median while flapping and the body line's holds within
     ``BODY_STEADY_DB`` of its own: a bird stops beating and glides on. Rotors never stop; a target fading as a whole
@@ -648,7 +687,7 @@ def flap_glide_share(spec, noise_level):
     the body within 1.5 dB). The wings of a slow stroke also go dark at its turns, where they move no faster than
     the body (the paper's Table II birds beating 0.5 Hz: lit 83 % of the dwell): a bird too.
     """
-    frames = _read_for_wings(spec, noise_level, weak=None, body_bins=BODY_BINS)
+    frames = _read_for_wings(spec, noise_level, weak=None, body_bins=BODY_BINS, still=still)
     wings = frames.lit_rows(SIGNAL_ROW_PERCENTILES[-1], wings_only=True)
     body = spec.power[np.abs(spec.f_hz) <= frames.off_hz]
     if len(wings) < MIN_WING_ROWS or len(body) == 0:
