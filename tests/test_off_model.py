@@ -1762,7 +1762,7 @@ def test_a_point_crossing_the_beam_lights_no_wings_with_its_window_leakage(tmp_p
     6.3 m/s, 15 m away: its line, 55-65 dB per frame, drifts 120 Hz over 0.68 s. Its Hann sidelobes light rows 2-4
     bins off it, whose level swings as the track's residual moves the line within its bin: read as a wingbeat at
     11.6 Hz, a bird. It neither flies nor travels in range: its wing rows must stand over what its own line's leakage
-    can light there (15-25 dB under that), and none do: no wingbeat, `none`."""
+    can light there (12-26 dB under that), and none do: no wingbeat, `none`."""
     radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=5.03145e-05, chirp_period_s=6.28931e-05,
                  sample_rate_hz=1271999.1267726005, n_samples=64, n_chirps=10802, n_channels=2)
     point = {"name": "moving_point", "type": "point", "rcs_m2": 0.0189626,

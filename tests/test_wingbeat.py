@@ -217,7 +217,7 @@ def test_wings_beyond_the_body_line_s_leakage_are_read_for_a_still_body(wingbeat
     """Sparrows beating 8 and 14 Hz at X band (PRF 2 kHz, 2 s), their wings 10 dB over the noise: 6 and 11 of their
     8 and 13 wing rows stand over what their body line's leakage could light; read on those for a body that neither
     flies nor travels, the wingbeat is as for one that flies. (One beating 4 Hz, its 4 wing rows 2-3 bins off a body
-    line 39 dB up, keeps none over it: a still bird so slow and near its line reads no wingbeat.)"""
+    line 39 dB up, keeps 2 over it, under the 3 asked: a still bird so slow and near its line reads no wingbeat.)"""
     echo, noise_power, band_hz = sparrow_echo(wingbeat_hz, f0_hz=10e9, prf_hz=2000.0, dwell_s=2.0, snr_db=10.0, seed=0)
     found = wingbeat.wingbeat(echo, prf_hz=2000.0, noise_power=noise_power, band_hz=band_hz, still=True)
     assert 1.0 / found.period_s == pytest.approx(wingbeat_hz, rel=0.01)

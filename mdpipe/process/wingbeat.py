@@ -404,12 +404,15 @@ def wing_frames(demodulated, *, prf_hz, noise_power, frame_s, weak=None, body_bi
     beyond the body line's leakage).
 
     ``still``: a body that neither flies nor travels in the dwell (a bird hovering or crossing the beam, a point
-    crossing it, a swaying branch). Its wing rows (each bin) stand, besides, over what its own line's window leakage
-    can light there (:func:`leakage_floor`). A strong line's Hann sidelobes light rows a few bins off it, and their
-    level swings as the body track's residual moves the line within its bin: an X-band point crossing the beam at
-    55-65 dB per frame lit six rows 2-4 bins off it so, 15-25 dB under that floor, which beat like wings at 11.6 Hz; a
-    branch swaying 10 cm at 2.8 Hz, likewise. A flying body's wing rows are read as they are (a body that flies is no
-    branch and no crossing point).
+    crossing it, a swaying branch; or one whose velocity is not read). Its wing rows (each bin) stand, besides, over
+    what its own line's window leakage can light there (:func:`leakage_floor`). A strong line's Hann sidelobes light
+    rows a few bins off it, and their level swings as the body track's residual moves the line within its bin: an
+    X-band point crossing the beam at 55-65 dB per frame lit six rows 2-4 bins off it so, 12-26 dB under that floor,
+    which beat like wings at 11.6 Hz. A flying body's wing rows are read as they are (a body that flies is no branch
+    and no crossing point). Limits: the floor is a steady tone's; a line sweeping 2.5 bins or more within one frame
+    lights rows past it (a line wobbling +-1 bin at 11 Hz read so as wings); and only the rows counted as wings stand
+    over it: once three do, the pattern read is that of every lit row, leakage rows with them (a still target with a
+    band of its own beside a strong wobbling line could read the wobble).
     """
     spec, noise_level = _frames(demodulated, prf_hz=prf_hz, noise_power=noise_power, frame_s=frame_s)
     return _read_for_wings(spec, noise_level, weak=weak, body_bins=body_bins, still=still)
