@@ -1406,13 +1406,13 @@ def flapping(dwell, *, still=False):
     return Measured(share)
 
 
-def wing_stroke(swing, *, body_velocity, dwell_s):
+def wing_stroke(swing, *, still, dwell_s):
     """How far a flying body's wings' reach swings over the dwell, a share of its greatest (``swing()``:
     :func:`~mdpipe.process.wingbeat.stroke_swing` on the dwell's spectrogram and noise level): a stroke seen, where the
     dwell holds too few beats for a wingbeat (birds beating 2-3.5 Hz seen for 0.4-0.9 s). Withheld as ``not_flying``
-    where the body neither flies nor travels (:func:`_least_wing_spread_mps`: a swaying branch's reach swings too),
-    else as :func:`_stroke` reads it."""
-    if not _least_wing_spread_mps(body_velocity, dwell_s=dwell_s)[0]:
+    where the body neither flies nor travels (``still``, :func:`_least_wing_spread_mps` as the caller read it: a
+    swaying branch's reach swings too), else as :func:`_stroke` reads it."""
+    if still:
         return withheld("not_flying", "")
     return _stroke(swing, dwell_s=dwell_s)
 
@@ -1612,13 +1612,13 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                                                        wavelength_m=wavelength_m, dwell_s=dwell_s))
         as_wings = functools.partial(wings, halfwidth=band.halfwidth, body_velocity=body.velocity, dwell_s=dwell_s,
                                      reach_mps=reach, overrun_mps=overrun)  # each held to the spread of wings
-        still = not _least_wing_spread_mps(body.velocity, dwell_s=dwell_s)[0]  # its wings stand over its leakage
+        still = not _least_wing_spread_mps(body.velocity, dwell_s=dwell_s)[0]  # read by the wings' three readings
         beat = as_wings(wingbeat_rate(body.demodulated, prf_hz=prf_hz, noise_power=noise_power, dwell_s=dwell_s,
                                       band_hz=2 * band.half_width_hz, still=still))
         flaps = flapping(dwell(), still=still)
         flaps = as_wings(flaps, described=flaps.value is not None and f"a micro-Doppler in bursts over "
                          f"{flaps.value:.0%} of the dwell, dark between them,")
-        stroke = wing_stroke(swing, body_velocity=body.velocity, dwell_s=dwell_s)
+        stroke = wing_stroke(swing, still=still, dwell_s=dwell_s)
         stroke = as_wings(stroke, described=stroke.value is not None and f"a micro-Doppler whose reach swings "
                           f"{stroke.value:.0%} of its greatest over the dwell")
         if wings_may_repeat:

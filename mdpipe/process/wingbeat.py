@@ -99,10 +99,10 @@ def _lit_mask(spec, noise_level, row_percentile, *, off_hz=-1.0, lit_db=SIGNAL_R
     return mask
 
 
-def _lit_rows(spec, noise_level, row_percentile, *, off_hz=-1.0, lit_db=SIGNAL_ROW_DB):
+def _lit_rows(spec, noise_level, row_percentile, *, off_hz=-1.0, lit_db=SIGNAL_ROW_DB, floor=None):
     """The Doppler rows within ``MAX_MICRO_DOPPLER_HZ`` (and beyond ``off_hz``) lit (:func:`_lit_level`) in
-    ``100 - row_percentile`` % of the frames."""
-    return spec.power[_lit_mask(spec, noise_level, row_percentile, off_hz=off_hz, lit_db=lit_db)]
+    ``100 - row_percentile`` % of the frames (and above ``floor``, a power per row, where given)."""
+    return spec.power[_lit_mask(spec, noise_level, row_percentile, off_hz=off_hz, lit_db=lit_db, floor=floor)]
 
 
 def _body_hz(spec, bins=BODY_BINS):
@@ -385,10 +385,8 @@ class WingFrames:
     def lit_rows(self, row_percentile, *, wings_only=False):
         """The rows lit in ``100 - row_percentile`` % of the frames (off the body line and over ``floor`` only,
         ``wings_only``)."""
-        if not wings_only:
-            return _lit_rows(self.spec, self.noise_level, row_percentile, lit_db=self.lit_db)
-        return self.spec.power[_lit_mask(self.spec, self.noise_level, row_percentile, off_hz=self.off_hz,
-                                         lit_db=self.lit_db, floor=self.floor)]
+        return _lit_rows(self.spec, self.noise_level, row_percentile, off_hz=self.off_hz if wings_only else -1.0,
+                         lit_db=self.lit_db, floor=self.floor if wings_only else None)
 
     def wing_rows(self):
         """How many rows off the body line are lit in a quarter of the frames."""
