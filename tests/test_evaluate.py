@@ -161,6 +161,18 @@ def test_score_row_and_coverage_arithmetic():
         ("s1", "rotation_rate_hz", "wrong"), ("s3", "rotation_rate_hz", "unwarranted")]
 
 
+def test_rotation_coverage_splits_by_band_and_blade_profile():
+    cases = [("X", "points", True, "right"), ("X", "points", True, "missed"), ("X", "uniform", True, "wrong"),
+             ("K", "points", True, "withheld"), ("K", "uniform", False, "n/a"), ("K", None, False, "n/a")]
+    frame = pd.DataFrame([{"band": band, "blade_profile": profile, "rotation_rate_hz_estimable": estimable,
+                           "rotation_rate_hz_verdict": verdict} for band, profile, estimable, verdict in cases])
+    grid = summary.coverage_grid(frame, "rotation_rate_hz", rows="band", columns="blade_profile").set_index("band")
+    assert list(grid.columns) == ["points", "uniform", "all"] and list(grid.index) == ["K", "X", "all"]
+    assert grid.loc["X"].tolist() == ["1 / 2", "1 / 1", "2 / 3"]  # a wrong value is confident, as in the coverage
+    assert grid.loc["K"].tolist() == ["0 / 1", "", "0 / 1"]  # withheld: not confident; K uniform: none estimable
+    assert grid.loc["all"].tolist() == ["1 / 3", "1 / 1", "2 / 4"]
+
+
 def test_line_snr_of_a_point_matches_the_measured_doppler_line(tmp_path):
     """A point receding by 3 Doppler bins (0.459 m/s: off 0 Hz, where the mean removal would take its line; on a
     bin, not between two) at snr_db = 0: after a Hann range FFT (gain N/3 on a real IF) and an n_chirps DFT its
@@ -236,6 +248,10 @@ def test_evaluate_command_writes_its_files(tmp_path):
         assert {f"{feature}_truth", f"{feature}_value", f"{feature}_verdict"} <= set(table.columns)
     text = (tmp_path / "summary.md").read_text()
     assert "## Class" in text and "## Confidently wrong" in text and text.strip() in result.output
+    drones = subjects[subjects["kind"] == "multirotor"]
+    assert len(drones) and drones["blade_profile"].isin(("uniform", "tapered", "points")).all()
+    assert subjects.loc[subjects["kind"] != "multirotor", "blade_profile"].isna().all()
+    assert "## Rotation rate by band and blade profile" in text
 
 
 def test_a_capture_the_processing_fails_on_is_recorded_as_a_wrong_class(tmp_path, monkeypatch):

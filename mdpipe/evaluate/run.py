@@ -56,7 +56,8 @@ def score_scene(draw, scene, truth, rows, *, process):
                                           range_max_m=track["range_m"]["max"],
                                           range_mean_m=track["range_m"]["mean"],
                                           tolerance_m=max(3 * radar["range_bin_m"], 1.0))
-    records = [{"target": "subject", "kind": physics.kind, "true_range_m": track and track["range_m"]["mean"],
+    records = [{"target": "subject", "kind": physics.kind, "blade_profile": track and track.get("blade_profile"),
+                "true_range_m": track and track["range_m"]["mean"],
                 "range_m": match and match["range_m"], "micro_line_snr_db": physics.micro_line_snr_db,
                 "micro_bin_share": physics.micro_bin_share,
                 "body_line_snr_db": physics.body_line_snr_db, **scoring.score_row(physics, match)}]

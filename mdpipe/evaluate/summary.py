@@ -43,6 +43,24 @@ def feature_table(frame):
     return pd.DataFrame(rows)
 
 
+def coverage_grid(frame, feature, *, rows, columns):
+    """Coverage of ``feature`` over the cases where it is estimable, split by two record columns: each cell
+    ``confident / estimable``, with a last row and column over all; cells without an estimable case are empty."""
+    estimable = frame[frame[f"{feature}_estimable"].astype(bool)]
+    confident = estimable[f"{feature}_verdict"].isin(("right", "wrong"))
+
+    def cell(mask):
+        return f"{int(confident[mask].sum())} / {int(mask.sum())}" if mask.any() else ""
+
+    row_keys = sorted(estimable[rows].dropna().unique())
+    column_keys = sorted(estimable[columns].dropna().unique())
+    grid = [{rows: key, **{c: cell((estimable[rows] == key) & (estimable[columns] == c)) for c in column_keys},
+             "all": cell(estimable[rows] == key)} for key in row_keys]
+    grid.append({rows: "all", **{c: cell(estimable[columns] == c) for c in column_keys},
+                 "all": cell(estimable[rows].notna())})
+    return pd.DataFrame(grid, columns=[rows, *column_keys, "all"])
+
+
 def confidently_wrong(frame):
     """Every confidently wrong value: scene, family, feature, truth, value, verdict, why (the truth's reason
     when not estimable), relative error in %; the largest error first, values without a truth last."""
@@ -94,6 +112,8 @@ def report(frame, *, title, wall_s, jobs):
              "and of those expected none.", "",
              "## Features (coverage = confident / estimable; errors of confident values on estimable cases)", "",
              _markdown(table), "",
+             "## Rotation rate by band and blade profile (confident / estimable)", "",
+             _markdown(coverage_grid(subjects, "rotation_rate_hz", rows="band", columns="blade_profile")), "",
              f"## Confidently wrong: {len(wrong)} values "
              f"({int((wrong['verdict'] == 'wrong').sum())} more than 10 % off, "
              f"{int((wrong['verdict'] == 'unwarranted').sum())} where the truth says not estimable), "
