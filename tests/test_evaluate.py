@@ -142,8 +142,8 @@ def test_score_row_and_coverage_arithmetic():
         (DRONE, {"class": "drone", "rotation_rate_hz": 40.0, "rotation_rate_hz_status": "assumed_blades"}),
         (bird, {"class": "drone", "rotation_rate_hz": 12.0, "wingbeat_freq_hz": 3.05, "body_velocity_mps": -5.2}),
     ]
-    records = [{"scene": f"s{i}", "family": p.kind, "band": "X", "target": "subject", **scoring.score_row(p, row)}
-               for i, (p, row) in enumerate(rows)]
+    records = [{"scene": f"s{i}", "family": p.kind, "band": "X", "target": "subject",
+                "micro_line_snr_db": p.micro_line_snr_db, **scoring.score_row(p, row)} for i, (p, row) in enumerate(rows)]
     frame = pd.DataFrame(records)
     table = summary.feature_table(frame).set_index("feature")
     rotation = table.loc["rotation_rate_hz"]
@@ -156,6 +156,9 @@ def test_score_row_and_coverage_arithmetic():
     assert velocity["coverage_%"] == pytest.approx(50.0)
     assert velocity["err_max_%"] == pytest.approx(4.0)  # 0.2 m/s of 5 m/s
     assert summary.confusion(frame).loc["bird", "drone"] == 1 and int(frame["class_ok"].sum()) == 3
+    misread = summary.wrong_classes(frame)
+    assert misread[["scene", "expected_class", "measured_class", "micro_line_snr_db"]].values.tolist() == [
+        ["s3", "bird", "drone", 20.0]]
     wrong = summary.confidently_wrong(frame)
     assert sorted(zip(wrong["scene"], wrong["feature"], wrong["verdict"])) == [
         ("s1", "rotation_rate_hz", "wrong"), ("s3", "rotation_rate_hz", "unwarranted")]

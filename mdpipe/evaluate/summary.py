@@ -76,6 +76,22 @@ def confidently_wrong(frame):
     return wrong.sort_values(["error_%"], ascending=False, na_position="last").reset_index(drop=True)
 
 
+def class_seen(frame):
+    """Whether each record's class a measurement can see: its blade or wing lines are ``detectable``, or it is
+    expected none (bool Series)."""
+    return frame["detectable"].astype(bool) | (frame["expected_class"] == "none")
+
+
+def wrong_classes(frame):
+    """The targets whose class a measurement can see (``detectable``, or expected none) and that were read as
+    another: scene, family, band, target, expected and measured class, the blade or wing lines' SNR in the body's
+    bin (dB); drones first, then birds, then the rest."""
+    bad = frame[class_seen(frame) & ~frame["class_ok"].astype(bool)]
+    order = bad["expected_class"].map({c: i for i, c in enumerate(CLASSES)})
+    columns = ["scene", "family", "band", "target", "expected_class", "measured_class", "micro_line_snr_db"]
+    return bad.assign(_order=order).sort_values(["_order", "scene"])[columns].reset_index(drop=True)
+
+
 def causes(wrong):
     """Confidently wrong values grouped by feature, verdict, family and the truth's reason."""
     if not len(wrong):
@@ -96,7 +112,7 @@ def report(frame, *, title, wall_s, jobs):
     subjects = frame[frame["target"] == "subject"]
     matrix = confusion(frame)
     class_right = int(frame["class_ok"].sum())
-    seen = frame[frame["detectable"].astype(bool) | (frame["expected_class"] == "none")]
+    seen = frame[class_seen(frame)]
     wrong = confidently_wrong(frame)
     table = feature_table(frame)
     per_scene = subjects.drop_duplicates("scene")
@@ -121,6 +137,10 @@ def report(frame, *, title, wall_s, jobs):
     if len(wrong):
         lines += ["By cause:", "", _markdown(causes(wrong)), "", f"Worst {min(WORST_LISTED, len(wrong))}:", "",
                   _markdown(wrong.head(WORST_LISTED)), ""]
+    misread = wrong_classes(frame)
+    if len(misread):
+        lines += [f"## Wrong classes where the class-telling echo is seen: {len(misread)}", "",
+                  _markdown(misread), ""]
     if len(failed):
         lines += [f"## Failed captures: {len(failed)}", "", _markdown(failed[["scene", "family", "error"]]), ""]
     lines += ["## Timings", "",
