@@ -637,8 +637,9 @@ def evaluate(sweep_path, out_dir, jobs, limit, keep_captures, seed):
     """Draw the scenes of SWEEP, simulate, process and score them against their truth.
 
     Writes OUT/scenes/<scene>.yaml (each rerunnable with mdpipe simulate + process), OUT/scenes.csv
-    (one row per scene x target: truth, value, status, error, verdict per feature) and OUT/summary.md,
-    which is also printed: class confusion, per-feature coverage and errors, confidently wrong values.
+    (one row per scene x target: truth, value, status, error, verdict per feature, a drone's blade profile) and
+    OUT/summary.md, which is also printed: class confusion, per-feature coverage and errors, rotation coverage by band
+    and blade profile, confidently wrong values, wrong classes.
     """
 
     from mdpipe.evaluate import run, summary, sweep

@@ -142,8 +142,8 @@ def test_score_row_and_coverage_arithmetic():
         (DRONE, {"class": "drone", "rotation_rate_hz": 40.0, "rotation_rate_hz_status": "assumed_blades"}),
         (bird, {"class": "drone", "rotation_rate_hz": 12.0, "wingbeat_freq_hz": 3.05, "body_velocity_mps": -5.2}),
     ]
-    records = [{"scene": f"s{i}", "family": p.kind, "band": "X", "target": "subject",
-                "micro_line_snr_db": p.micro_line_snr_db, **scoring.score_row(p, row)} for i, (p, row) in enumerate(rows)]
+    records = [{"scene": f"s{i}", "family": p.kind, "band": "X", "target": "subject", **scoring.score_row(p, row)}
+               for i, (p, row) in enumerate(rows)]
     frame = pd.DataFrame(records)
     table = summary.feature_table(frame).set_index("feature")
     rotation = table.loc["rotation_rate_hz"]
@@ -156,9 +156,7 @@ def test_score_row_and_coverage_arithmetic():
     assert velocity["coverage_%"] == pytest.approx(50.0)
     assert velocity["err_max_%"] == pytest.approx(4.0)  # 0.2 m/s of 5 m/s
     assert summary.confusion(frame).loc["bird", "drone"] == 1 and int(frame["class_ok"].sum()) == 3
-    misread = summary.wrong_classes(frame)
-    assert misread[["scene", "expected_class", "measured_class", "micro_line_snr_db"]].values.tolist() == [
-        ["s3", "bird", "drone", 20.0]]
+
     wrong = summary.confidently_wrong(frame)
     assert sorted(zip(wrong["scene"], wrong["feature"], wrong["verdict"])) == [
         ("s1", "rotation_rate_hz", "wrong"), ("s3", "rotation_rate_hz", "unwarranted")]
@@ -166,14 +164,40 @@ def test_score_row_and_coverage_arithmetic():
 
 def test_rotation_coverage_splits_by_band_and_blade_profile():
     cases = [("X", "points", True, "right"), ("X", "points", True, "missed"), ("X", "uniform", True, "wrong"),
-             ("K", "points", True, "withheld"), ("K", "uniform", False, "n/a"), ("K", None, False, "n/a")]
-    frame = pd.DataFrame([{"band": band, "blade_profile": profile, "rotation_rate_hz_estimable": estimable,
-                           "rotation_rate_hz_verdict": verdict} for band, profile, estimable, verdict in cases])
+             ("K", "points", True, "withheld"), ("K", "uniform", False, "n/a"), ("K", None, False, "n/a"),
+             ("W94", None, True, "right")]
+    wavelengths = {"X": 0.03, "K": 0.0125, "W94": 0.0032}
+    frame = pd.DataFrame([{"band": band, "wavelength_m": wavelengths[band], "blade_profile": profile,
+                           "rotation_rate_hz_estimable": estimable, "rotation_rate_hz_verdict": verdict}
+                          for band, profile, estimable, verdict in cases])
+    grid = summary.coverage_grid(frame, "rotation_rate_hz", rows="band", columns="blade_profile",
+                                 order="wavelength_m").set_index("band")
+    assert list(grid.columns) == ["-", "points", "uniform", "all"]
+    assert list(grid.index) == ["X", "K", "W94", "all"]  # by wavelength, longest first
+    assert grid.loc["X"].tolist() == ["", "1 / 2", "1 / 1", "2 / 3"]  # a wrong value is confident, as in the coverage
+    assert grid.loc["K"].tolist() == ["", "0 / 1", "", "0 / 1"]  # withheld: not confident; K uniform: none estimable
+    assert grid.loc["W94"].tolist() == ["1 / 1", "", "", "1 / 1"]  # a missing profile has its column: rows add up
+    assert grid.loc["all"].tolist() == ["1 / 1", "1 / 3", "1 / 1", "3 / 5"]
+    # flags read back from a CSV are strings; NaN is no flag
+    frame["rotation_rate_hz_estimable"] = ["True", "True", "True", "True", "False", np.nan, "False"]
     grid = summary.coverage_grid(frame, "rotation_rate_hz", rows="band", columns="blade_profile").set_index("band")
-    assert list(grid.columns) == ["points", "uniform", "all"] and list(grid.index) == ["K", "X", "all"]
-    assert grid.loc["X"].tolist() == ["1 / 2", "1 / 1", "2 / 3"]  # a wrong value is confident, as in the coverage
-    assert grid.loc["K"].tolist() == ["0 / 1", "", "0 / 1"]  # withheld: not confident; K uniform: none estimable
-    assert grid.loc["all"].tolist() == ["1 / 3", "1 / 1", "2 / 4"]
+    assert grid.loc["all", "all"] == "2 / 4"
+    frame["rotation_rate_hz_estimable"] = False
+    assert summary.coverage_grid(frame, "rotation_rate_hz", rows="band", columns="blade_profile") is None
+
+
+def test_wrong_classes_are_those_a_measurement_could_tell():
+    cases = [("s0", "bird", "drone", True, 20.0), ("s1", "drone", "none", False, 8.0),  # under the lines: not listed
+             ("s2", "drone", "none", True, 16.0), ("s3", "none", "bird", False, -np.inf),
+             ("s4", "drone", "error", True, 30.0), ("s5", "bird", "bird", True, 25.0)]
+    frame = pd.DataFrame([{"scene": scene, "family": expected, "band": "X", "target": "subject",
+                           "expected_class": expected, "measured_class": measured, "class_ok": expected == measured,
+                           "detectable": detectable, "micro_line_snr_db": snr}
+                          for scene, expected, measured, detectable, snr in cases])
+    misread = summary.wrong_classes(frame)
+    # drones first, then birds, then the rest; a failed capture is listed with the failed captures instead
+    assert misread[["scene", "expected_class", "measured_class"]].values.tolist() == [
+        ["s2", "drone", "none"], ["s0", "bird", "drone"], ["s3", "none", "bird"]]
 
 
 def test_line_snr_of_a_point_matches_the_measured_doppler_line(tmp_path):

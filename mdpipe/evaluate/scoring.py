@@ -256,6 +256,7 @@ def score_value(feature, *, truth, estimable, value, status):
     return {"confident": confident, "error": error, "verdict": verdict}
 
 
+CONFIDENT = ("right", "wrong")  # the verdicts of confident values on estimable cases: what coverage counts
 CONFIDENTLY_WRONG = ("wrong", "unwarranted")
 
 

@@ -1,4 +1,5 @@
-"""Tables of an evaluation: class confusion, per-feature coverage and errors, confidently wrong values.
+"""Tables of an evaluation: class confusion, per-feature coverage and errors, rotation coverage by band and blade
+profile, confidently wrong values, wrong classes.
 
 Everything here reads the scored records (one per scene x target, see :mod:`mdpipe.evaluate.run`).
 """
@@ -6,10 +7,16 @@ Everything here reads the scored records (one per scene x target, see :mod:`mdpi
 import numpy as np
 import pandas as pd
 
-from mdpipe.evaluate.scoring import CONFIDENTLY_WRONG, FEATURES, LINE_SNR_DB
+from mdpipe.evaluate.scoring import CONFIDENT, CONFIDENTLY_WRONG, FEATURES, LINE_SNR_DB
 
 CLASSES = ("drone", "bird", "none")
 WORST_LISTED = 15
+
+
+def flag(column):
+    """A record column of flags as bools: True only where it holds True (a CSV read back gives "True"); NaN and
+    anything else are False."""
+    return column.map(lambda value: value is True or value is np.True_ or value == "True").astype(bool)
 
 
 def records_frame(records):
@@ -30,8 +37,8 @@ def feature_table(frame):
     rows = []
     for feature in FEATURES:
         verdict = frame[f"{feature}_verdict"]
-        estimable = frame[f"{feature}_estimable"].astype(bool)
-        confident = verdict.isin(("right", "wrong"))
+        estimable = flag(frame[f"{feature}_estimable"])
+        confident = verdict.isin(CONFIDENT)
         errors = frame.loc[confident, f"{feature}_error"].dropna().to_numpy() * 100
         quantiles = np.percentile(errors, [50, 90]).tolist() + [errors.max()] if len(errors) else [np.nan] * 3
         rows.append({"feature": feature, "estimable": int(estimable.sum()), "confident": int(confident.sum()),
@@ -43,21 +50,26 @@ def feature_table(frame):
     return pd.DataFrame(rows)
 
 
-def coverage_grid(frame, feature, *, rows, columns):
+def coverage_grid(frame, feature, *, rows, columns, order=None):
     """Coverage of ``feature`` over the cases where it is estimable, split by two record columns: each cell
-    ``confident / estimable``, with a last row and column over all; cells without an estimable case are empty."""
-    estimable = frame[frame[f"{feature}_estimable"].astype(bool)]
-    confident = estimable[f"{feature}_verdict"].isin(("right", "wrong"))
+    ``confident / estimable``, with a last row and column over all; cells without an estimable case are empty, and a
+    missing key reads ``-``. Rows in the order of ``order`` (a record column: its mean per row key, falling), else
+    sorted; None where the feature is estimable nowhere."""
+    estimable = frame[flag(frame[f"{feature}_estimable"])].fillna({rows: "-", columns: "-"})
+    if not len(estimable):
+        return None
+    confident = estimable[f"{feature}_verdict"].isin(CONFIDENT)
 
     def cell(mask):
         return f"{int(confident[mask].sum())} / {int(mask.sum())}" if mask.any() else ""
 
-    row_keys = sorted(estimable[rows].dropna().unique())
-    column_keys = sorted(estimable[columns].dropna().unique())
+    row_keys = (sorted(estimable[rows].unique()) if order is None else
+                list(estimable.groupby(rows)[order].mean().sort_values(ascending=False).index))
+    column_keys = sorted(estimable[columns].unique())
     grid = [{rows: key, **{c: cell((estimable[rows] == key) & (estimable[columns] == c)) for c in column_keys},
              "all": cell(estimable[rows] == key)} for key in row_keys]
     grid.append({rows: "all", **{c: cell(estimable[columns] == c) for c in column_keys},
-                 "all": cell(estimable[rows].notna())})
+                 "all": cell(estimable[rows] == estimable[rows])})
     return pd.DataFrame(grid, columns=[rows, *column_keys, "all"])
 
 
@@ -77,16 +89,17 @@ def confidently_wrong(frame):
 
 
 def class_seen(frame):
-    """Whether each record's class a measurement can see: its blade or wing lines are ``detectable``, or it is
+    """True where a measurement can tell the record's class: its blade or wing lines are ``detectable``, or it is
     expected none (bool Series)."""
-    return frame["detectable"].astype(bool) | (frame["expected_class"] == "none")
+    return flag(frame["detectable"]) | (frame["expected_class"] == "none")
 
 
 def wrong_classes(frame):
-    """The targets whose class a measurement can see (``detectable``, or expected none) and that were read as
-    another: scene, family, band, target, expected and measured class, the blade or wing lines' SNR in the body's
-    bin (dB); drones first, then birds, then the rest."""
-    bad = frame[class_seen(frame) & ~frame["class_ok"].astype(bool)]
+    """The targets whose class a measurement can tell (:func:`class_seen`) read as another, a capture the processing
+    failed on aside (listed with the failed captures): scene, family, band, target, expected and measured class, and
+    the blade or wing lines' SNR in the body's bin (dB; -inf for a target without such lines, NaN for an extra
+    detection); drones first, then birds, then the rest."""
+    bad = frame[class_seen(frame) & ~flag(frame["class_ok"]) & (frame["measured_class"] != "error")]
     order = bad["expected_class"].map({c: i for i, c in enumerate(CLASSES)})
     columns = ["scene", "family", "band", "target", "expected_class", "measured_class", "micro_line_snr_db"]
     return bad.assign(_order=order).sort_values(["_order", "scene"])[columns].reset_index(drop=True)
@@ -115,6 +128,7 @@ def report(frame, *, title, wall_s, jobs):
     seen = frame[class_seen(frame)]
     wrong = confidently_wrong(frame)
     table = feature_table(frame)
+    grid = coverage_grid(subjects, "rotation_rate_hz", rows="band", columns="blade_profile", order="wavelength_m")
     per_scene = subjects.drop_duplicates("scene")
     failed = subjects[subjects["error"].fillna("") != ""]
     lines = [f"# {title}", "",
@@ -129,7 +143,7 @@ def report(frame, *, title, wall_s, jobs):
              "## Features (coverage = confident / estimable; errors of confident values on estimable cases)", "",
              _markdown(table), "",
              "## Rotation rate by band and blade profile (confident / estimable)", "",
-             _markdown(coverage_grid(subjects, "rotation_rate_hz", rows="band", columns="blade_profile")), "",
+             ("estimable in no scene" if grid is None else _markdown(grid)), "",
              f"## Confidently wrong: {len(wrong)} values "
              f"({int((wrong['verdict'] == 'wrong').sum())} more than 10 % off, "
              f"{int((wrong['verdict'] == 'unwarranted').sum())} where the truth says not estimable), "
