@@ -4,7 +4,7 @@ imbalance, bodies, flapping birds, clutter, 4 bands, SNR -5 to 20 dB per IF samp
 (the blade count and elevation given where the scene says so), scored against the scene's truth.
 
 Prints the class confusion, each feature's coverage (scenes where the simple rules below say it is measurable,
-values given `ok`, and of those within tolerance) and every confidently wrong value: `ok` but off by more than
+values given `ok`, and of those within tolerance), the rotation's per band, and every confidently wrong value: `ok` but off by more than
 the tolerance (rotation and chopping 2 %, blade length 5 %, wingbeat 3 %, body velocity 0.3 m/s), or given for a
 quantity the target does not have (a rotor rate of a bird). Measurable: a drone at SNR >= 0 dB holding 3 turns of
 its slowest rotor, chopping under PRF / 2 (rotation: N given; blade length also beta given <= 45 deg and the tips
@@ -79,9 +79,11 @@ def wrong(feature, value, truth):
 
 
 def score(results):
-    """(confusion counts, coverage per feature [measurable, ok, ok and right], confidently wrong entries)."""
+    """(confusion counts, coverage per feature [measurable, ok, ok and right], the rotation's coverage per band (the
+    description's first word), confidently wrong entries)."""
     confusion = {}
     coverage = {f: [0, 0, 0] for f in FEATURES}
+    rotation_by_band = {}
     bad = []
     for sid, description, truth, row, classes in results:
         measured = row["class"] if truth["kind"] != "none" else ("none" if set(classes) <= {"none"} else "drone")
@@ -94,12 +96,14 @@ def score(results):
             confident = value is not None and status == "ok" and not isinstance(value, list)
             off = confident and wrong(feature, value, truth)
             if can[feature]:
-                coverage[feature][0] += 1
-                coverage[feature][1] += confident
-                coverage[feature][2] += confident and not off
+                counts = [1, int(confident), int(confident and not off)]
+                coverage[feature] = [a + b for a, b in zip(coverage[feature], counts)]
+                if feature == "rotation_rate_hz":
+                    band = description.split()[0]
+                    rotation_by_band[band] = [a + b for a, b in zip(rotation_by_band.get(band, [0, 0, 0]), counts)]
             if off:
                 bad.append((sid, feature, value, truth.get(TRUTH_KEY[feature]), description))
-    return confusion, coverage, bad
+    return confusion, coverage, rotation_by_band, bad
 
 
 def parse_ids(text):
@@ -120,7 +124,7 @@ def main():
     ids = parse_ids(args.scenes)
     with ProcessPoolExecutor(args.jobs) as pool:
         results = sorted(pool.map(run_scene, ids, [args.workdir] * len(ids)), key=lambda r: r[0])
-    confusion, coverage, bad = score(results)
+    confusion, coverage, rotation_by_band, bad = score(results)
     kinds = ("drone", "bird", "none")
     print(f"{len(results)} scenes of benchmarks/offmodel\n")
     print("| expected (rows), measured (columns) | " + " | ".join(kinds) + " |")
@@ -130,6 +134,9 @@ def main():
     print("\n| feature | measurable | given ok | ok and within tolerance |\n|---|---|---|---|")
     for feature, (can, given, right) in coverage.items():
         print(f"| `{feature}` | {can} | {given} ({given / max(can, 1):.0%}) | {right} ({right / max(can, 1):.0%}) |")
+    print("\n| `rotation_rate_hz` by band | measurable | given ok | ok and within tolerance |\n|---|---|---|---|")
+    for band, (can, given, right) in sorted(rotation_by_band.items(), key=lambda item: scenes.BANDS[item[0]]):
+        print(f"| {band} | {can} | {given} ({given / max(can, 1):.0%}) | {right} ({right / max(can, 1):.0%}) |")
     values = [b for b in bad if b[1] != "class"]
     print(f"\nconfidently wrong: {len(values)} values, {len(bad) - len(values)} wrong classes")
     for sid, what, value, expected, description in bad:

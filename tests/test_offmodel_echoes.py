@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-from bench_offmodel import run_scene  # noqa: E402
+from bench_offmodel import run_scene, score  # noqa: E402
 
 
 @pytest.mark.parametrize("sid, what", [
@@ -171,3 +171,24 @@ def test_rotors_phased_at_one_rate_centred_on_their_body_are_not_read_at_twice_t
     assert row["class"] == "drone" and row["rotation_rate_hz_status"] == "assumed_blades"
     assert row["n_blades_source"] == "assumed"
     assert row["rotation_rate_hz"] == pytest.approx(truth["rate"], rel=0.005)
+
+
+def test_the_benchmark_splits_the_rotation_coverage_by_band():
+    """Three drones where the rotation is measurable (N given, loud, three turns, chopping under PRF / 2) at X and 77
+    GHz, one not (N not given): per band, measurable / given ok / ok within 2 %."""
+    truth = dict(kind="drone", prf=8000.0, snr=10.0, dwell=0.5, rates=[80.0], chop=160.0, rate=80.0, given_blades=True,
+                 given_el=False, beta=10.0, tip_hz=3000.0, lam=0.03, body_v=0.0)
+    row = {"class": "drone", **{f: None for f in ("chopping_freq_hz", "blade_length_m", "body_velocity_mps",
+                                                  "wingbeat_freq_hz")},
+           **{f"{f}_status": None for f in ("chopping_freq_hz", "blade_length_m", "body_velocity_mps",
+                                             "wingbeat_freq_hz")}}
+    results = [(0, "X 4x2bl", truth, {**row, "rotation_rate_hz": 80.4, "rotation_rate_hz_status": "ok"}, ["drone"]),
+               (1, "77 4x2bl", truth, {**row, "rotation_rate_hz": 160.0, "rotation_rate_hz_status": "ok"}, ["drone"]),
+               (2, "77 4x2bl", truth, {**row, "rotation_rate_hz": None, "rotation_rate_hz_status": "no_flashes"},
+                ["drone"]),
+               (3, "77 4x2bl", {**truth, "given_blades": False},
+                {**row, "rotation_rate_hz": 80.0, "rotation_rate_hz_status": "assumed_blades"}, ["drone"])]
+    _, coverage, by_band, bad = score(results)
+    assert coverage["rotation_rate_hz"] == [3, 2, 1]
+    assert by_band == {"X": [1, 1, 1], "77": [2, 1, 0]}  # the 77 GHz value given ok is 2x off: given, not right
+    assert [(sid, what) for sid, what, *_ in bad] == [(1, "rotation_rate_hz")]
