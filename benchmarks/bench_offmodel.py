@@ -4,11 +4,11 @@ imbalance, bodies, flapping birds, clutter, 4 bands, SNR -5 to 20 dB per IF samp
 (the blade count and elevation given where the scene says so), scored against the scene's truth.
 
 Prints the class confusion, each feature's coverage (scenes where the simple rules below say it is measurable,
-values given `ok`, and of those within tolerance), the rotation's per band, and every confidently wrong value: `ok` but off by more than
-the tolerance (rotation and chopping 2 %, blade length 5 %, wingbeat 3 %, body velocity 0.3 m/s), or given for a
-quantity the target does not have (a rotor rate of a bird). Measurable: a drone at SNR >= 0 dB holding 3 turns of
-its slowest rotor, chopping under PRF / 2 (rotation: N given; blade length also beta given <= 45 deg and the tips
-unaliased); a body that moves, its Doppler under PRF / 2; a bird at SNR >= 0 dB beating 3 times.
+values given `ok`, and of those within tolerance), the rotation's per band, and every confidently wrong value:
+`ok` but off by more than the tolerance (rotation and chopping 2 %, blade length 5 %, wingbeat 3 %, body velocity
+0.3 m/s), or given for a quantity the target does not have (a rotor rate of a bird). Measurable: a drone at SNR >= 0
+dB holding 3 turns of its slowest rotor, chopping under PRF / 2 (rotation: N given; blade length also beta given <= 45
+deg and the tips unaliased); a body that moves, its Doppler under PRF / 2; a bird at SNR >= 0 dB beating 3 times.
 
 Simulating all 380 scenes takes about 30 min of one core; the captures are kept in --workdir and a capture found
 there is reused (delete them after changing benchmarks/offmodel).

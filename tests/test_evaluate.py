@@ -156,7 +156,6 @@ def test_score_row_and_coverage_arithmetic():
     assert velocity["coverage_%"] == pytest.approx(50.0)
     assert velocity["err_max_%"] == pytest.approx(4.0)  # 0.2 m/s of 5 m/s
     assert summary.confusion(frame).loc["bird", "drone"] == 1 and int(frame["class_ok"].sum()) == 3
-
     wrong = summary.confidently_wrong(frame)
     assert sorted(zip(wrong["scene"], wrong["feature"], wrong["verdict"])) == [
         ("s1", "rotation_rate_hz", "wrong"), ("s3", "rotation_rate_hz", "unwarranted")]

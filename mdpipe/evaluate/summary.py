@@ -16,7 +16,10 @@ WORST_LISTED = 15
 def flag(column):
     """A record column of flags as bools: True only where it holds True (a CSV read back gives "True"); NaN and
     anything else are False."""
-    return column.map(lambda value: value is True or value is np.True_ or value == "True").astype(bool)
+    def true(value):
+        return value is True or value is np.True_ or (isinstance(value, str) and value == "True")
+
+    return column.map(true).astype(bool)
 
 
 def records_frame(records):
@@ -69,7 +72,7 @@ def coverage_grid(frame, feature, *, rows, columns, order=None):
     grid = [{rows: key, **{c: cell((estimable[rows] == key) & (estimable[columns] == c)) for c in column_keys},
              "all": cell(estimable[rows] == key)} for key in row_keys]
     grid.append({rows: "all", **{c: cell(estimable[columns] == c) for c in column_keys},
-                 "all": cell(estimable[rows] == estimable[rows])})
+                 "all": cell(pd.Series(True, index=estimable.index))})
     return pd.DataFrame(grid, columns=[rows, *column_keys, "all"])
 
 
