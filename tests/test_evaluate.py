@@ -191,12 +191,14 @@ def test_wrong_classes_are_those_a_measurement_could_tell():
              ("s4", "drone", "error", True, 30.0), ("s5", "bird", "bird", True, 25.0)]
     frame = pd.DataFrame([{"scene": scene, "family": expected, "band": "X", "target": "subject",
                            "expected_class": expected, "measured_class": measured, "class_ok": expected == measured,
-                           "detectable": detectable, "micro_line_snr_db": snr}
+                           "detectable": detectable, "micro_line_snr_db": snr,
+                           "chopping_freq_hz_status": "no_flashes", "wingbeat_freq_hz_status": "no_wingbeat"}
                           for scene, expected, measured, detectable, snr in cases])
     misread = summary.wrong_classes(frame)
-    # drones first, then birds, then the rest; a failed capture is listed with the failed captures instead
-    assert misread[["scene", "expected_class", "measured_class"]].values.tolist() == [
-        ["s2", "drone", "none"], ["s0", "bird", "drone"], ["s3", "none", "bird"]]
+    # drones first, then birds, then the rest; a failed capture is listed with the failed captures instead; each with
+    # the status of what tells its expected class
+    assert misread[["scene", "expected_class", "measured_class", "evidence_status"]].values.tolist() == [
+        ["s2", "drone", "none", "no_flashes"], ["s0", "bird", "drone", "no_wingbeat"], ["s3", "none", "bird", ""]]
 
 
 def test_line_snr_of_a_point_matches_the_measured_doppler_line(tmp_path):

@@ -97,15 +97,22 @@ def class_seen(frame):
     return flag(frame["detectable"]) | (frame["expected_class"] == "none")
 
 
+CLASS_EVIDENCE = {"drone": "chopping_freq_hz_status", "bird": "wingbeat_freq_hz_status"}
+
+
 def wrong_classes(frame):
     """The targets whose class a measurement can tell (:func:`class_seen`) read as another, a capture the processing
-    failed on aside (listed with the failed captures): scene, family, band, target, expected and measured class, and
-    the blade or wing lines' SNR in the body's bin (dB; -inf for a target without such lines, NaN for an extra
-    detection); drones first, then birds, then the rest."""
+    failed on aside (listed with the failed captures): scene, family, band, target, expected and measured class, the
+    blade or wing lines' SNR in the body's bin (dB; -inf for a target without such lines, NaN for an extra
+    detection) and the status of what tells the expected class (a drone's chopping, a bird's wingbeat:
+    ``evidence_status``, empty for the rest); drones first, then birds, then the rest."""
     bad = frame[class_seen(frame) & ~flag(frame["class_ok"]) & (frame["measured_class"] != "error")]
+    evidence = [row.get(CLASS_EVIDENCE.get(row["expected_class"]), "") for _, row in bad.iterrows()]
     order = bad["expected_class"].map({c: i for i, c in enumerate(CLASSES)})
-    columns = ["scene", "family", "band", "target", "expected_class", "measured_class", "micro_line_snr_db"]
-    return bad.assign(_order=order).sort_values(["_order", "scene"])[columns].reset_index(drop=True)
+    columns = ["scene", "family", "band", "target", "expected_class", "measured_class", "micro_line_snr_db",
+               "evidence_status"]
+    return (bad.assign(_order=order, evidence_status=evidence).sort_values(["_order", "scene"])[columns]
+            .reset_index(drop=True))
 
 
 def causes(wrong):
