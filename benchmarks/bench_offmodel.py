@@ -4,7 +4,7 @@ imbalance, bodies, flapping birds, clutter, 4 bands, SNR -5 to 20 dB per IF samp
 (the blade count and elevation given where the scene says so), scored against the scene's truth.
 
 Prints the class confusion, each feature's coverage (scenes where the simple rules below say it is measurable,
-values given `ok`, and of those within tolerance), the rotation's per band, and every confidently wrong value:
+values given `ok`, and of those within tolerance), the rotation's coverage per band, and every confidently wrong value:
 `ok` but off by more than the tolerance (rotation and chopping 2 %, blade length 5 %, wingbeat 3 %, body velocity
 0.3 m/s), or given for a quantity the target does not have (a rotor rate of a bird). Measurable: a drone at SNR >= 0
 dB holding 3 turns of its slowest rotor, chopping under PRF / 2 (rotation: N given; blade length also beta given <= 45
@@ -78,6 +78,11 @@ def wrong(feature, value, truth):
     return abs(value / expected - 1) > TOLERANCE[feature]
 
 
+def _added(counts, more):
+    """Counts added element by element."""
+    return [a + b for a, b in zip(counts, more)]
+
+
 def score(results):
     """(confusion counts, coverage per feature [measurable, ok, ok and right], the rotation's coverage per band (the
     description's first word), confidently wrong entries)."""
@@ -97,10 +102,10 @@ def score(results):
             off = confident and wrong(feature, value, truth)
             if can[feature]:
                 counts = [1, int(confident), int(confident and not off)]
-                coverage[feature] = [a + b for a, b in zip(coverage[feature], counts)]
+                coverage[feature] = _added(coverage[feature], counts)
                 if feature == "rotation_rate_hz":
                     band = description.split()[0]
-                    rotation_by_band[band] = [a + b for a, b in zip(rotation_by_band.get(band, [0, 0, 0]), counts)]
+                    rotation_by_band[band] = _added(rotation_by_band.get(band, [0, 0, 0]), counts)
             if off:
                 bad.append((sid, feature, value, truth.get(TRUTH_KEY[feature]), description))
     return confusion, coverage, rotation_by_band, bad
@@ -135,7 +140,8 @@ def main():
     for feature, (can, given, right) in coverage.items():
         print(f"| `{feature}` | {can} | {given} ({given / max(can, 1):.0%}) | {right} ({right / max(can, 1):.0%}) |")
     print("\n| `rotation_rate_hz` by band | measurable | given ok | ok and within tolerance |\n|---|---|---|---|")
-    for band, (can, given, right) in sorted(rotation_by_band.items(), key=lambda item: scenes.BANDS[item[0]]):
+    by_frequency = sorted(rotation_by_band.items(), key=lambda item: scenes.BANDS.get(item[0], float("inf")))
+    for band, (can, given, right) in by_frequency:
         print(f"| {band} | {can} | {given} ({given / max(can, 1):.0%}) | {right} ({right / max(can, 1):.0%}) |")
     values = [b for b in bad if b[1] != "class"]
     print(f"\nconfidently wrong: {len(values)} values, {len(bad) - len(values)} wrong classes")

@@ -188,17 +188,20 @@ def test_rotation_coverage_splits_by_band_and_blade_profile():
 def test_wrong_classes_are_those_a_measurement_could_tell():
     cases = [("s0", "bird", "drone", True, 20.0), ("s1", "drone", "none", False, 8.0),  # under the lines: not listed
              ("s2", "drone", "none", True, 16.0), ("s3", "none", "bird", False, -np.inf),
-             ("s4", "drone", "error", True, 30.0), ("s5", "bird", "bird", True, 25.0)]
+             ("s4", "drone", "error", True, 30.0), ("s5", "bird", "bird", True, 25.0),
+             ("s6", "drone", "none", True, 14.0)]
     frame = pd.DataFrame([{"scene": scene, "family": expected, "band": "X", "target": "subject",
                            "expected_class": expected, "measured_class": measured, "class_ok": expected == measured,
                            "detectable": detectable, "micro_line_snr_db": snr,
                            "chopping_freq_hz_status": "no_flashes", "wingbeat_freq_hz_status": "no_wingbeat"}
                           for scene, expected, measured, detectable, snr in cases])
+    frame.loc[frame["scene"] == "s6", "chopping_freq_hz_status"] = None  # no row matched to it
     misread = summary.wrong_classes(frame)
     # drones first, then birds, then the rest; a failed capture is listed with the failed captures instead; each with
     # the status of what tells its expected class
     assert misread[["scene", "expected_class", "measured_class", "evidence_status"]].values.tolist() == [
-        ["s2", "drone", "none", "no_flashes"], ["s0", "bird", "drone", "no_wingbeat"], ["s3", "none", "bird", ""]]
+        ["s2", "drone", "none", "no_flashes"], ["s6", "drone", "none", "not_detected"],
+        ["s0", "bird", "drone", "no_wingbeat"], ["s3", "none", "bird", ""]]
 
 
 def test_line_snr_of_a_point_matches_the_measured_doppler_line(tmp_path):

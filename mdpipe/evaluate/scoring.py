@@ -256,7 +256,7 @@ def score_value(feature, *, truth, estimable, value, status):
     return {"confident": confident, "error": error, "verdict": verdict}
 
 
-CONFIDENT = ("right", "wrong")  # the verdicts of confident values on estimable cases: what coverage counts
+COVERED = ("right", "wrong")  # the verdicts coverage counts: confident values on estimable cases
 CONFIDENTLY_WRONG = ("wrong", "unwarranted")
 
 

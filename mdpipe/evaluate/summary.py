@@ -7,15 +7,15 @@ Everything here reads the scored records (one per scene x target, see :mod:`mdpi
 import numpy as np
 import pandas as pd
 
-from mdpipe.evaluate.scoring import CONFIDENT, CONFIDENTLY_WRONG, FEATURES, LINE_SNR_DB
+from mdpipe.evaluate.scoring import CONFIDENTLY_WRONG, COVERED, FEATURES, LINE_SNR_DB
 
 CLASSES = ("drone", "bird", "none")
 WORST_LISTED = 15
 
 
 def flag(column):
-    """A record column of flags as bools: True only where it holds True (a CSV read back gives "True"); NaN and
-    anything else are False."""
+    """A record column of flags as bools: True only where it holds True or "True" (a column read back from a CSV may
+    hold strings, or NaN where a record had no value); NaN and anything else are False."""
     def true(value):
         return value is True or value is np.True_ or (isinstance(value, str) and value == "True")
 
@@ -41,7 +41,7 @@ def feature_table(frame):
     for feature in FEATURES:
         verdict = frame[f"{feature}_verdict"]
         estimable = flag(frame[f"{feature}_estimable"])
-        confident = verdict.isin(CONFIDENT)
+        confident = verdict.isin(COVERED)
         errors = frame.loc[confident, f"{feature}_error"].dropna().to_numpy() * 100
         quantiles = np.percentile(errors, [50, 90]).tolist() + [errors.max()] if len(errors) else [np.nan] * 3
         rows.append({"feature": feature, "estimable": int(estimable.sum()), "confident": int(confident.sum()),
@@ -56,18 +56,18 @@ def feature_table(frame):
 def coverage_grid(frame, feature, *, rows, columns, order=None):
     """Coverage of ``feature`` over the cases where it is estimable, split by two record columns: each cell
     ``confident / estimable``, with a last row and column over all; cells without an estimable case are empty, and a
-    missing key reads ``-``. Rows in the order of ``order`` (a record column: its mean per row key, falling), else
-    sorted; None where the feature is estimable nowhere."""
+    missing key reads ``-`` (a column sorted first). Rows in the order of ``order`` (a record column: its mean per row
+    key, falling; keys without a value last), else sorted; None where the feature is estimable nowhere."""
     estimable = frame[flag(frame[f"{feature}_estimable"])].fillna({rows: "-", columns: "-"})
     if not len(estimable):
         return None
-    confident = estimable[f"{feature}_verdict"].isin(CONFIDENT)
+    confident = estimable[f"{feature}_verdict"].isin(COVERED)
 
     def cell(mask):
         return f"{int(confident[mask].sum())} / {int(mask.sum())}" if mask.any() else ""
 
     row_keys = (sorted(estimable[rows].unique()) if order is None else
-                list(estimable.groupby(rows)[order].mean().sort_values(ascending=False).index))
+                list(estimable.groupby(rows)[order].mean().sort_values(ascending=False, kind="stable").index))
     column_keys = sorted(estimable[columns].unique())
     grid = [{rows: key, **{c: cell((estimable[rows] == key) & (estimable[columns] == c)) for c in column_keys},
              "all": cell(estimable[rows] == key)} for key in row_keys]
@@ -105,9 +105,18 @@ def wrong_classes(frame):
     failed on aside (listed with the failed captures): scene, family, band, target, expected and measured class, the
     blade or wing lines' SNR in the body's bin (dB; -inf for a target without such lines, NaN for an extra
     detection) and the status of what tells the expected class (a drone's chopping, a bird's wingbeat:
-    ``evidence_status``, empty for the rest); drones first, then birds, then the rest."""
+    ``evidence_status``; ``not_detected`` where no row was matched to the target, empty for the rest); drones first,
+    then birds, then the rest."""
     bad = frame[class_seen(frame) & ~flag(frame["class_ok"]) & (frame["measured_class"] != "error")]
-    evidence = [row.get(CLASS_EVIDENCE.get(row["expected_class"]), "") for _, row in bad.iterrows()]
+
+    def evidence(row):
+        column = CLASS_EVIDENCE.get(row["expected_class"])
+        if column is None:
+            return ""
+        status = row.get(column)
+        return status if isinstance(status, str) else "not_detected"
+
+    evidence = [evidence(row) for _, row in bad.iterrows()]
     order = bad["expected_class"].map({c: i for i, c in enumerate(CLASSES)})
     columns = ["scene", "family", "band", "target", "expected_class", "measured_class", "micro_line_snr_db",
                "evidence_status"]
@@ -134,8 +143,8 @@ def report(frame, *, title, wall_s, jobs):
     """The summary as markdown text (printed and written to ``summary.md``)."""
     subjects = frame[frame["target"] == "subject"]
     matrix = confusion(frame)
-    class_right = int(frame["class_ok"].sum())
-    seen = frame[class_seen(frame)]
+    class_right = int(flag(frame["class_ok"]).sum())
+    seen_right = flag(frame.loc[class_seen(frame), "class_ok"])
     wrong = confidently_wrong(frame)
     table = feature_table(frame)
     grid = coverage_grid(subjects, "rotation_rate_hz", rows="band", columns="blade_profile", order="wavelength_m")
@@ -147,7 +156,7 @@ def report(frame, *, title, wall_s, jobs):
              "", "## Class (rows: expected, columns: measured; extra detections are expected none)", "",
              _markdown(matrix.reset_index().rename(columns={"expected_class": "expected"})), "",
              f"Classes right: {class_right} / {len(frame)} ({100 * class_right / len(frame):.1f} %); "
-             f"{seen['class_ok'].sum()} / {len(seen)} ({100 * seen['class_ok'].mean():.1f} %) of the targets whose "
+             f"{seen_right.sum()} / {len(seen_right)} ({100 * seen_right.mean():.1f} %) of the targets whose "
              f"class-telling echo a measurement can see (blade or wing lines >= {LINE_SNR_DB:g} dB above the noise) "
              "and of those expected none.", "",
              "## Features (coverage = confident / estimable; errors of confident values on estimable cases)", "",
