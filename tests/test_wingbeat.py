@@ -495,3 +495,49 @@ def test_wings_overrunning_the_span_swing_and_blades_filling_it_hold_unless_they
     assert 0.3 < swings[0] < 0.6
     assert swings[1] < 0.05
     assert swings[2] > 0.4
+
+
+# A pigeon of the held-out bird sweep drawn at seed 999 (`make evaluate-heldout-birds-fresh`, scene 52): X band,
+# 11.4 kHz PRF, 0.95 s; it flaps 0.56 s (2.8 beats of 5.08 Hz, its stroke ramping down over the last) and glides.
+PIGEON_SHORT_BURST = {
+    "name": "pigeon_short_burst", "seed": 245072936,
+    "radar": {"f_start_hz": 9.8e9, "f_stop_hz": 9.9e9, "ramp_up_s": 6.98885e-05, "chirp_period_s": 8.73607e-05,
+              "sample_rate_hz": 1831488.7303061306, "n_samples": 128, "n_chirps": 10876, "n_channels": 1},
+    "noise": {"moving_snr_db": 19.5206},
+    "targets": [
+        {"name": "pigeon", "type": "bird", "a1_deg": 37.8814, "a2_deg": 47.9043,
+         "flap_glide": {"flap_s": 0.557009, "glide_s": 1.19073}, "wingbeat_drift_fraction": 0.0113147,
+         "wing_roughness": 0.28494, "wingbeat_hz": 5.07911, "upper_arm_m": 0.151398, "forearm_m": 0.142388,
+         "body_rcs_m2": 0.00785047, "wing_rcs_m2": 0.00425502,
+         "motion": {"position_m": [55.9288, -5.79236, 2.61114], "velocity_mps": [9.39542, -4.70241, 0.0]}},
+        {"type": "static", "name": "clutter0", "range_m": 22.4167, "azimuth_deg": 29.3151, "rcs_m2": 0.754702},
+        {"type": "static", "name": "clutter1", "range_m": 36.9896, "azimuth_deg": -18.3946, "rcs_m2": 3.98501}],
+}
+
+
+def test_a_wingbeat_whose_repeats_scatter_is_not_given_ok(tmp_capture):
+    """The pigeon's wing rows repeat at 0.178 s, 0.36 s and 0.53 s, scattered about whole multiples of their fit (a
+    standard error of 1.2 % of it; the last repeat spans the stroke's ramp down): 5.61 Hz, 10.5 % off, was `ok`. It
+    is given as `repeats_scatter`, a bird still."""
+    from mdpipe.params import ProcessParams
+    from mdpipe.process.pipeline import process_capture
+
+    path, _ = tmp_capture(PIGEON_SHORT_BURST)
+    row = process_capture(path, ProcessParams()).rows[0]
+    assert row["class"] == "bird"
+    assert row["wingbeat_freq_hz_status"] == "repeats_scatter" and row["wingbeat_freq_hz"] is not None
+    assert "standard error" in row["notes"]
+
+
+@pytest.mark.parametrize("error_share, status", [(0.0125, "repeats_scatter"), (0.009, "ok"), (np.inf, "ok")])
+def test_a_wingbeat_is_ok_only_as_sharp_as_its_repeats_allow(monkeypatch, error_share, status):
+    """A period of 0.2 s read with a standard error (its repeats' scatter about k T) of 1.25 % of it: over the 1 % that
+    holds a wingbeat to 3 % at three standard errors, given as `repeats_scatter` (value kept); 0.9 %: `ok`; a period of
+    two repeats or fewer has no scatter to read (inf): `ok`."""
+    from mdpipe.process import features
+    from mdpipe.process.periodicity import Period
+
+    found = Period(period_s=0.2, strength=0.5, repeats=3, peak_lag=12, error_s=error_share * 0.2)
+    monkeypatch.setattr(features, "wingbeat", lambda *args, **kwargs: found)
+    beat = features.wingbeat_rate(np.zeros(64, complex), prf_hz=1000.0, noise_power=1.0, dwell_s=1.0)
+    assert beat.value == pytest.approx(5.0) and beat.status == status

@@ -41,6 +41,8 @@ STATUS_CODES = {
     "body_only": "only the body line crosses the threshold: no micro-Doppler extent",
     "below_threshold": "nothing in the spectrum stands the threshold above its mean",
     "no_wingbeat": "no repeating wingbeat pattern in the dwell",
+    "repeats_scatter": ("the wing pattern's repeats scatter about whole multiples of its period (a standard error over "
+                        "1 % of it): the period is not sharp to the 3 % a wingbeat is held to"),
     "no_glide": "no flapping bursts with glides between them (wings that beat throughout, or no wings)",
     "no_stroke": "no wing rows whose reach changes over the dwell as a stroke's does (a rotor's holds, a glide's too)",
     "not_flying": ("the body neither flies nor travels in the dwell: a swaying branch's micro-Doppler changes as a "
