@@ -1383,8 +1383,8 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None, st
     ``ambiguous_period`` where two looks read it an octave apart, or a stroke side's rows repeat at twice the period
     read (:class:`~mdpipe.process.wingbeat.Octave`), as ``repeats_scatter`` where the period's standard error (its
     repeats' scatter about k T, three repeats or more) exceeds ``WINGBEAT_SPREAD_SHARE`` of it (of 302 wingbeats so
-    fitted on the evaluation's sweeps, the four over it, 1.03-1.22 %, were 0.7-10.5 % off, three over 3 %; the 298 under
-    0.8 % all within 2.5 %). ``still``: the body neither flies nor travels, its wing rows read
+    fitted on the evaluation's sweeps where the truth says they are measurable, the four over it, 1.03-1.22 %, were
+    0.7-10.5 % off, three over 3 %; the 298 under 0.8 % all within 2.5 %). ``still``: the body neither flies nor travels, its wing rows read
     over its line's leakage (:func:`~mdpipe.process.wingbeat.wing_frames`)."""
     beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz, still=still)
     if isinstance(beat, Octave):

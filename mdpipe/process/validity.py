@@ -2,8 +2,10 @@
 
 Every feature column ``X`` of a row has a companion ``X_status``. A value with status ``ok`` is a
 measurement mdpipe stands behind. A value with another status is either absent (null, the code says
-why) or, for ``assumed_blades`` and ``assumed_elevation``, present but resting on an assumption the row
-names (``n_blades``, ``n_blades_source``, ``elevation_deg``). Programs should use values whose status is ``ok``.
+why) or present but not stood behind: for ``assumed_blades`` and ``assumed_elevation`` resting on an assumption
+the row names (``n_blades``, ``n_blades_source``, ``elevation_deg``); a tip Doppler with ``few_harmonics``; a
+wingbeat with ``ambiguous_period`` (it or twice it) or ``repeats_scatter`` (not sharp to 3 %). Programs should use
+values whose status is ``ok``.
 """
 
 from dataclasses import dataclass
