@@ -21,9 +21,9 @@ from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period
                                     ramp_readable, ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
-from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, dwell_frames,
-                                     flap_glide_share, overruns_span, readable_reach_hz, stroke_swing, weak_reach_hz,
-                                     wing_reach_hz, wingbeat)
+from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, ShortBursts,
+                                     dwell_frames, flap_glide_share, overruns_span, readable_reach_hz, stroke_swing,
+                                     weak_reach_hz, wing_reach_hz, wingbeat)
 
 BODY_LINE_DB = 6.0           # a body line stands this far above the next line of its frame ...
 BODY_KEPT_LINE_DB = 3.0      # ... or this far, where it is the strongest line on the body track in ...
@@ -1384,8 +1384,10 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None, st
     read (:class:`~mdpipe.process.wingbeat.Octave`), as ``repeats_scatter`` where the period's standard error (its
     repeats' scatter about k T, three repeats or more) exceeds ``WINGBEAT_SPREAD_SHARE`` of it (of 302 wingbeats so
     fitted on the evaluation's sweeps where the truth says they are measurable, the four over it, 1.03-1.22 %, were
-    0.7-10.5 % off, three over 3 %; the 298 under 0.8 % all within 2.5 %). ``still``: the body neither flies nor travels, its wing rows read
-    over its line's leakage (:func:`~mdpipe.process.wingbeat.wing_frames`)."""
+    0.7-10.5 % off, three over 3 %; the 298 under 0.8 % all within 2.5 %), and as ``short_bursts`` where it rests on
+    two repeats or fewer across flapping bursts under three beats long (:class:`~mdpipe.process.wingbeat.ShortBursts`).
+    ``still``: the body neither flies nor travels, its wing rows read over its line's leakage
+    (:func:`~mdpipe.process.wingbeat.wing_frames`)."""
     beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz, still=still)
     if isinstance(beat, Octave):
         why = (f"the wing rows repeat every {beat.short_s:.3g} s, those of one stroke side every {beat.period_s:.3g} s "
@@ -1394,6 +1396,10 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None, st
                f"{beat.period_s:.3g} s (the rows' stroke sign, blind near the body line, would tell)")
         return Measured(1.0 / beat.period_s, "ambiguous_period",
                         f"wingbeat {1.0 / beat.period_s:.3g} Hz or twice it: {why}")
+    if isinstance(beat, ShortBursts):
+        return Measured(1.0 / beat.period_s, "short_bursts",
+                        f"wingbeat {1.0 / beat.period_s:.3g} Hz, read across flapping bursts of {beat.burst_s:.2g} s "
+                        "at most, under three beats: its repeat pairs frames across the switches to gliding")
     if beat is not None and np.isfinite(beat.error_s) and beat.error_s > WINGBEAT_SPREAD_SHARE * beat.period_s:
         return Measured(1.0 / beat.period_s, "repeats_scatter",
                         f"wingbeat {1.0 / beat.period_s:.3g} Hz, its pattern's repeats scattered about whole multiples "

@@ -4,8 +4,8 @@ Every feature column ``X`` of a row has a companion ``X_status``. A value with s
 measurement mdpipe stands behind. A value with another status is either absent (null, the code says
 why) or present but not stood behind: for ``assumed_blades`` and ``assumed_elevation`` resting on an assumption
 the row names (``n_blades``, ``n_blades_source``, ``elevation_deg``); a tip Doppler with ``few_harmonics``; a
-wingbeat with ``ambiguous_period`` (it or twice it) or ``repeats_scatter`` (not sharp to 3 %). Programs should use
-values whose status is ``ok``.
+wingbeat with ``ambiguous_period`` (it or twice it), ``repeats_scatter`` or ``short_bursts`` (not sharp to 3 %).
+Programs should use values whose status is ``ok``.
 """
 
 from dataclasses import dataclass
@@ -43,6 +43,8 @@ STATUS_CODES = {
     "body_only": "only the body line crosses the threshold: no micro-Doppler extent",
     "below_threshold": "nothing in the spectrum stands the threshold above its mean",
     "no_wingbeat": "no repeating wingbeat pattern in the dwell",
+    "short_bursts": ("a wingbeat read across flapping bursts under three beats long, on two repeats or fewer: its "
+                     "repeat pairs frames across the switches to gliding, which shift it by a few per cent"),
     "repeats_scatter": ("the wing pattern's repeats scatter about whole multiples of its period (a standard error over "
                         "1 % of it): the period is not sharp to the 3 % a wingbeat is held to"),
     "no_glide": "no flapping bursts with glides between them (wings that beat throughout, or no wings)",
