@@ -583,3 +583,25 @@ def test_a_short_burst_reading_keeps_its_value_and_says_why(monkeypatch):
     monkeypatch.setattr(features, "wingbeat", lambda *args, **kwargs: wingbeat.ShortBursts(0.25, 0.6))
     beat = features.wingbeat_rate(np.zeros(64, complex), prf_hz=1000.0, noise_power=1.0, dwell_s=1.0)
     assert beat.value == pytest.approx(4.0) and beat.status == "short_bursts" and "0.6 s" in beat.note
+
+
+@pytest.mark.parametrize("error_s, burst_frames, short", [
+    (np.inf, 30, True),      # two repeats, bursts 0.6 s: 2.4 periods of 0.25 s
+    (np.inf, 45, False),     # bursts 0.9 s: 3.6 periods
+    (0.001, 30, False),      # three repeats or more: the scatter rule reads it
+    (np.inf, None, False),   # no glide
+])
+def test_only_a_period_of_two_repeats_over_bursts_under_three_periods_is_short(monkeypatch, error_s, burst_frames,
+                                                                                 short):
+    """:func:`wingbeat._short_bursts` on a period of 0.25 s, frames at 50 Hz: a ShortBursts only where the period rests
+    on two repeats or fewer (no scatter read) and the longest burst holds under three periods."""
+    from mdpipe.process.periodicity import Period
+
+    found = Period(period_s=0.25, strength=0.5, repeats=2, peak_lag=12, error_s=error_s)
+    runs = None if burst_frames is None else (None, np.array([[5, 5 + burst_frames // 2], [60, 60 + burst_frames]]))
+    monkeypatch.setattr(wingbeat, "_flap_bursts", lambda frames: runs)
+    result = wingbeat._short_bursts(found, SimpleNamespace(frame_rate=50.0))
+    if short:
+        assert result == wingbeat.ShortBursts(0.25, burst_frames / 50.0)
+    else:
+        assert result is found

@@ -43,8 +43,9 @@ STATUS_CODES = {
     "body_only": "only the body line crosses the threshold: no micro-Doppler extent",
     "below_threshold": "nothing in the spectrum stands the threshold above its mean",
     "no_wingbeat": "no repeating wingbeat pattern in the dwell",
-    "short_bursts": ("a wingbeat read across flapping bursts under three beats long, on two repeats or fewer: its "
-                     "repeat pairs frames across the switches to gliding, which shift it by a few per cent"),
+    "short_bursts": ("a wingbeat read on two repeats or fewer for a bird whose flapping bursts, as the wing rows mark "
+                     "them, hold under three of its periods: its repeat pairs frames across the switches to gliding, "
+                     "which shift it by a few per cent"),
     "repeats_scatter": ("the wing pattern's repeats scatter about whole multiples of its period (a standard error over "
                         "1 % of it): the period is not sharp to the 3 % a wingbeat is held to"),
     "no_glide": "no flapping bursts with glides between them (wings that beat throughout, or no wings)",
