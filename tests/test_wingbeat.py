@@ -418,15 +418,20 @@ GULL_TWO_BEATS = {
 }
 
 
+def _first_row(tmp_capture, scene):
+    """The first feature row of ``scene`` simulated and processed with the default parameters."""
+    from mdpipe.params import ProcessParams
+    from mdpipe.process.pipeline import process_capture
+
+    path, _ = tmp_capture(scene)
+    return process_capture(path, ProcessParams()).rows[0]
+
+
 def test_a_wing_pattern_repeating_at_half_the_beat_is_not_taken_for_the_wingbeat(tmp_capture):
     """All the gull's wing rows repeat at half the beat (the two strokes alike), those of one stroke side at the beat
     only: the wingbeat is given at it, not confidently (5.87 Hz, `ok`, before the sides were read; its sides only in
     the rows lit in a quarter of the frames)."""
-    from mdpipe.params import ProcessParams
-    from mdpipe.process.pipeline import process_capture
-
-    path, _ = tmp_capture(GULL_TWO_BEATS)
-    row = process_capture(path, ProcessParams()).rows[0]
+    row = _first_row(tmp_capture, GULL_TWO_BEATS)
     assert row["class"] == "bird"
     assert row["wingbeat_freq_hz_status"] == "ambiguous_period"
     assert row["wingbeat_freq_hz"] == pytest.approx(2.89487, rel=0.05)
@@ -439,11 +444,7 @@ def test_a_wing_pattern_under_two_beats_whose_half_beat_repeats_on_a_slope_gives
     for), no peak there. The half-beat reading (5.08 Hz `ok` before the stroke sides were read, then 2.54 Hz or twice
     it, `ambiguous_period`) rested on that flank: no wingbeat is given. Its wings' reach swings with the stroke: a
     bird all the same (it was `none`)."""
-    from mdpipe.params import ProcessParams
-    from mdpipe.process.pipeline import process_capture
-
-    path, _ = tmp_capture(GOOSE_TWO_BEATS)
-    row = process_capture(path, ProcessParams()).rows[0]
+    row = _first_row(tmp_capture, GOOSE_TWO_BEATS)
     assert row["wingbeat_freq_hz"] is None and row["wingbeat_freq_hz_status"] == "no_wingbeat"
     assert row["wing_stroke_swing_status"] == "ok" and row["class"] == "bird"
 
@@ -519,11 +520,7 @@ def test_a_wingbeat_whose_repeats_scatter_is_not_given_ok(tmp_capture):
     """The pigeon's wing rows repeat at 0.178 s, 0.36 s and 0.53 s, scattered about whole multiples of their fit (a
     standard error of 1.2 % of it; the last repeat spans the stroke's ramp down): 5.61 Hz, 10.5 % off, was `ok`. It
     is given as `repeats_scatter`, a bird still."""
-    from mdpipe.params import ProcessParams
-    from mdpipe.process.pipeline import process_capture
-
-    path, _ = tmp_capture(PIGEON_SHORT_BURST)
-    row = process_capture(path, ProcessParams()).rows[0]
+    row = _first_row(tmp_capture, PIGEON_SHORT_BURST)
     assert row["class"] == "bird"
     assert row["wingbeat_freq_hz_status"] == "repeats_scatter" and row["wingbeat_freq_hz"] is not None
     assert "standard error" in row["notes"]
@@ -565,11 +562,7 @@ def test_a_wingbeat_read_across_a_burst_too_short_for_its_repeat_is_not_given_ok
     repeat at 2T with a beat of flapping pairs: the rest of that repeat's pairs straddle the switch to gliding, and the
     period read on two repeats (0.2315 s, 4.32 Hz for 4.06: 6.3 % fast) was `ok`. It is given as `short_bursts`, a
     bird still."""
-    from mdpipe.params import ProcessParams
-    from mdpipe.process.pipeline import process_capture
-
-    path, _ = tmp_capture(CROW_ONE_SHORT_BURST)
-    row = process_capture(path, ProcessParams()).rows[0]
+    row = _first_row(tmp_capture, CROW_ONE_SHORT_BURST)
     assert row["class"] == "bird"
     assert row["wingbeat_freq_hz_status"] == "short_bursts" and row["wingbeat_freq_hz"] is not None
     assert "flapping bursts" in row["notes"]
