@@ -1385,7 +1385,8 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None, st
     repeats' scatter about k T, three repeats or more) exceeds ``WINGBEAT_SPREAD_SHARE`` of it (of 302 wingbeats so
     fitted on the evaluation's sweeps where the truth says they are measurable, the four over it, 1.03-1.22 %, were
     0.7-10.5 % off, three over 3 %; the 298 under 0.8 % all within 2.5 %), and as ``short_bursts`` where it rests on
-    two repeats or fewer across flapping bursts under three beats long (:class:`~mdpipe.process.wingbeat.ShortBursts`).
+    two repeats or fewer across flapping bursts under three of its periods long, as the wing rows mark them
+    (:class:`~mdpipe.process.wingbeat.ShortBursts`).
     ``still``: the body neither flies nor travels, its wing rows read over its line's leakage
     (:func:`~mdpipe.process.wingbeat.wing_frames`)."""
     beat = wingbeat(demodulated, prf_hz=prf_hz, noise_power=noise_power, band_hz=band_hz, still=still)
@@ -1399,7 +1400,7 @@ def wingbeat_rate(demodulated, *, prf_hz, noise_power, dwell_s, band_hz=None, st
     if isinstance(beat, ShortBursts):
         return Measured(1.0 / beat.period_s, "short_bursts",
                         f"wingbeat {1.0 / beat.period_s:.3g} Hz, read across flapping bursts of {beat.burst_s:.2g} s "
-                        "at most, under three beats: its repeat pairs frames across the switches to gliding")
+                        "at most, under three of its periods: its repeat pairs frames across the switches to gliding")
     if beat is not None and np.isfinite(beat.error_s) and beat.error_s > WINGBEAT_SPREAD_SHARE * beat.period_s:
         return Measured(1.0 / beat.period_s, "repeats_scatter",
                         f"wingbeat {1.0 / beat.period_s:.3g} Hz, its pattern's repeats scattered about whole multiples "

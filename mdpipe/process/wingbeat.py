@@ -339,9 +339,9 @@ def _two_looks(demodulated, frames, *, prf_hz, noise_power, still):
 
 @dataclass(frozen=True)
 class ShortBursts:
-    """A wingbeat read at ``period_s`` over the whole record of a bird that glides between flapping bursts, the
-    longest ``burst_s`` long (under ``SHORT_BURST_BEATS`` periods), on two repeats or fewer (:func:`_short_bursts`):
-    a wing pattern, but its period is not sharp."""
+    """A wingbeat read at ``period_s`` (over the whole record or within the bursts) of a bird that glides between
+    flapping bursts, the longest ``burst_s`` long (under ``SHORT_BURST_BEATS`` periods), on two repeats or fewer
+    (:func:`_short_bursts`): a wing pattern, but its period is not sharp."""
 
     period_s: float
     burst_s: float
