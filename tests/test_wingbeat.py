@@ -584,16 +584,14 @@ def test_a_short_burst_reading_keeps_its_value_and_says_why(monkeypatch):
     (0.001, 30, False),      # three repeats or more: the scatter rule reads it
     (np.inf, None, False),   # no glide
 ])
-def test_only_a_period_of_two_repeats_over_bursts_under_three_periods_is_short(monkeypatch, error_s, burst_frames,
-                                                                                 short):
+def test_only_a_period_of_two_repeats_over_bursts_under_three_periods_is_short(error_s, burst_frames, short):
     """:func:`wingbeat._short_bursts` on a period of 0.25 s, frames at 50 Hz: a ShortBursts only where the period rests
     on two repeats or fewer (no scatter read) and the longest burst holds under three periods."""
     from mdpipe.process.periodicity import Period
 
     found = Period(period_s=0.25, strength=0.5, repeats=2, peak_lag=12, error_s=error_s)
     runs = None if burst_frames is None else (None, np.array([[5, 5 + burst_frames // 2], [60, 60 + burst_frames]]))
-    monkeypatch.setattr(wingbeat, "_flap_bursts", lambda frames: runs)
-    result = wingbeat._short_bursts(found, SimpleNamespace(frame_rate=50.0))
+    result = wingbeat._short_bursts(found, SimpleNamespace(frame_rate=50.0, flap_bursts=runs))
     if short:
         assert result == wingbeat.ShortBursts(0.25, burst_frames / 50.0)
     else:

@@ -29,6 +29,7 @@ beating 14.6 Hz in 63 ms frames read 7.6 % off, and at 14 Hz at X band as 7 Hz).
 period, the wingbeat is one of the two (:class:`Octave`).
 """
 
+import functools
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -291,8 +292,8 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None, still=False):
 
 def _short_bursts(found, frames):
     """``found``, or a :class:`ShortBursts` where it rests on two repeats or fewer (no scatter of its repeats to read:
-    its standard error is unknown) and the bird glides between bursts (:func:`_flap_bursts`) the longest of which holds
-    under ``SHORT_BURST_BEATS`` of it.
+    its standard error is unknown) and the bird glides between bursts (:attr:`WingFrames.flap_bursts`) the longest of
+    which holds under ``SHORT_BURST_BEATS`` of it.
 
     The whole record's repeat at 2T then pairs under a beat of flapping frames within one burst, the rest of its pairs
     straddling a switch to gliding, which shifts the peaks by a few per cent (:func:`_within_bursts`), and the bursts
@@ -305,7 +306,7 @@ def _short_bursts(found, frames):
     stays `ok`."""
     if np.isfinite(found.error_s):
         return found
-    flapping = _flap_bursts(frames)
+    flapping = frames.flap_bursts
     if flapping is None:
         return found
     runs = flapping[1]
@@ -430,6 +431,14 @@ class WingFrames:
     def wing_rows(self):
         """How many rows off the body line are lit in a quarter of the frames."""
         return len(self.lit_rows(SIGNAL_ROW_PERCENTILES[-1], wings_only=True))
+
+    @functools.cached_property
+    def flap_bursts(self):
+        """The flapping frames of a bird that glides between bursts and their :func:`bursts`, or None where it does
+        not glide (:func:`flapping_frames` on the rows :func:`gated_pattern_autocorrelation` reads, not flapping in
+        ``MIN_GLIDE_SHARE`` of the dwell at least: :func:`_gliding`); read once, for the bursts' cycle and length."""
+        gliding = _gliding(self.spec, noise_level=self.noise_level, frame_rate=self.frame_rate, lit_db=self.lit_db)
+        return None if gliding is None else (gliding[1], bursts(gliding[1]))
 
 
 def wing_frames(demodulated, *, prf_hz, noise_power, frame_s, weak=None, body_bins=BODY_LOBE_BINS, still=False):
@@ -629,20 +638,11 @@ def _gated(frames):
                                          lit_db=frames.lit_db)
 
 
-def _flap_bursts(frames):
-    """The flapping frames of a bird in ``frames`` that glides between bursts and their :func:`bursts`, or None where
-    it does not glide (:func:`flapping_frames` on the rows :func:`gated_pattern_autocorrelation` reads, not flapping in
-    ``MIN_GLIDE_SHARE`` of the dwell at least: :func:`_gliding`)."""
-    gliding = _gliding(frames.spec, noise_level=frames.noise_level, frame_rate=frames.frame_rate,
-                       lit_db=frames.lit_db)
-    return None if gliding is None else (gliding[1], bursts(gliding[1]))
-
-
 def burst_cycle_s(frames):
     """The cycle (s) of a bird's flap-glide bursts in ``frames``: the median time between its switches from gliding
     to flapping, and between those from flapping to gliding (the record's own start and end are none); None where it
-    does not glide (:func:`_flap_bursts`) or shows no two switches of one kind."""
-    found = _flap_bursts(frames)
+    does not glide (:attr:`WingFrames.flap_bursts`) or shows no two switches of one kind."""
+    found = frames.flap_bursts
     if found is None:
         return None
     flapping, runs = found
