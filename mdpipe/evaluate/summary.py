@@ -109,14 +109,14 @@ def wrong_classes(frame):
     then birds, then the rest."""
     bad = frame[class_seen(frame) & ~flag(frame["class_ok"]) & (frame["measured_class"] != "error")]
 
-    def evidence(row):
+    def evidence_of(row):
         column = CLASS_EVIDENCE.get(row["expected_class"])
         if column is None:
             return ""
         status = row.get(column)
         return status if isinstance(status, str) else "not_detected"
 
-    evidence = [evidence(row) for _, row in bad.iterrows()]
+    evidence = [evidence_of(row) for _, row in bad.iterrows()]
     order = bad["expected_class"].map({c: i for i, c in enumerate(CLASSES)})
     columns = ["scene", "family", "band", "target", "expected_class", "measured_class", "micro_line_snr_db",
                "evidence_status"]
