@@ -1771,3 +1771,72 @@ def test_a_point_crossing_the_beam_lights_no_wings_with_its_window_leakage(tmp_p
     assert row["wingbeat_freq_hz"] is None and row["wingbeat_freq_hz_status"] == "no_wingbeat"
     assert row["class"] == "none"
 
+
+
+def test_a_comb_and_a_whole_power_that_agree_outweigh_the_echo_period(tmp_path):
+    """A quadrotor of the seed 4321 draw of the default sweep (scene 5) at X band, seen from 83 deg, N = 2 given:
+    rotors 106.6-111.6 rev/s (4.6 % apart), chopping at 218.5 Hz on average. The comb reads 220.5 Hz and the
+    echo's power repeats whole at 219.2 Hz, while the complex echo's period reads 912 Hz (4.14 times the comb, no
+    whole ratio): withheld as `ambiguous_period`, one reading against two, before. The comb stands: within 1 %."""
+    radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=8.54665e-05, chirp_period_s=0.000106833,
+                 sample_rate_hz=748831.4142266267, n_samples=64, n_chirps=4276, n_channels=2)
+    rates = [106.633, -108.71, 111.569, -110.08]
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 83.1316, "body_rcs_m2": 0.00117135,
+            "body_scatterers": [{"offset_m": [0.05, 0.0, -0.06], "rcs_m2": 0.0141294}],
+            "motion": {"position_m": [37.1874, -11.3267, 0.573414], "velocity_mps": [0.0787606, 7.03972, 0.0],
+                       "sway_amplitude_m": [0.0867228, 0.017535, 0.0426787], "sway_period_s": 2.19267},
+            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 32, "root_m": 0.01,
+                       "phase_deg": [119.137, 75.477, 156.217, 291.31], "blade_rcs_m2": 0.00983684,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 0.850211,
+                       "tilt_deg": [0.172704, 3.57081, 4.70228, -3.00929], "blades": 2, "arm_m": 0.307547,
+                       "blade_length_m": 0.088294, "rev_per_s": rates, "blade_gains": [1.0, 1.0]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=29.2429, seed=2134734662, n_blades=2,
+                    elevation_deg=83.1316)
+    assert row["class"] == "drone" and not row["aliased"]
+    assert row["rotation_rate_hz_status"] == row["chopping_freq_hz_status"] == "ok"
+    assert row["chopping_freq_hz"] == pytest.approx(2 * np.mean(np.abs(rates)), rel=0.01)
+    assert row["rotation_rate_hz"] == pytest.approx(np.mean(np.abs(rates)), rel=0.01)
+    assert "set aside" in row["notes"]  # the row says which reading was left out
+
+
+def test_flash_times_the_power_repeats_whole_at_outweigh_a_folded_comb_at_their_multiple(tmp_path):
+    """A quadrotor of the held-out drone sweep (scene 174) at 76.5 GHz, N = 2 given, with its clutter: four rotors
+    at 82.4 rev/s, chopping at 164.8 Hz, its blades' band folded. The flash times read 164.83 Hz and the echo's
+    power repeats whole at 164.84 Hz, a folded comb at three times that, 494.5 Hz (a chance fold: a rotor chopping
+    so would flash between the flash times, and the power would repeat there): withheld before, as a comb at a
+    whole multiple of flash times. The flash times stand: within 0.1 %."""
+    radar = dict(f_start_hz=76.5e9, f_stop_hz=76.75e9, ramp_up_s=3.19333e-05, chirp_period_s=3.99167e-05,
+                 sample_rate_hz=2004177.4593919201, n_samples=64, n_chirps=17463, n_channels=1)
+    rates = [82.3778, -82.4338, 82.4194, -82.4036]
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 42.0392, "body_rcs_m2": 0.0273883,
+            "motion": {"position_m": [1.87636, -1.00583, 5.8551], "velocity_mps": [-0.0820776, 1.3423, 0.0],
+                       "sway_amplitude_m": [0.0298357, 0.130984, 0.0494908], "sway_period_s": 3.27939},
+            "rotors": {"count": 4, "blade_profile": "tapered", "tip_reflectivity": 0.27596, "root_m": 0.01,
+                       "phase_deg": [155.794, 350.265, 129.396, 124.394], "blade_rcs_m2": 0.00744517,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 2.41262,
+                       "tilt_deg": [3.37146, -2.48582, -1.73725, 3.82603], "blades": 2, "arm_m": 0.199126,
+                       "blade_length_m": 0.110796, "rev_per_s": rates, "blade_gains": [1.0, 1.0]}}
+    clutter = [{"type": "static", "name": "clutter0", "range_m": 16.3087, "azimuth_deg": 34.2007, "rcs_m2": 0.194554},
+               {"type": "static", "name": "clutter1", "range_m": 16.3087, "azimuth_deg": 5.58398, "rcs_m2": 1.64307}]
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=19.596, seed=2125706885, clutter=clutter, n_blades=2,
+                    elevation_deg=42.0392)
+    assert row["class"] == "drone" and row["aliased"]
+    assert row["rotation_rate_hz_status"] == row["chopping_freq_hz_status"] == "ok"
+    assert row["chopping_freq_hz"] == pytest.approx(2 * np.mean(np.abs(rates)), rel=0.001)
+    assert row["rotation_rate_hz"] == pytest.approx(np.mean(np.abs(rates)), rel=0.001)
+
+
+@pytest.mark.parametrize("chopping_hz, ratio, power_hz, whole, stands", [
+    ((220.5,), 4.14, 219.2, True, True),           # the period at no whole ratio: the comb and the power stand
+    ((220.5,), 1 / 3, 219.2, True, False),         # a third of the comb: rotors a third apart, comb and power at 3x
+    ((140.8, 139.2), 1 / 5, 140.8, True, True),    # rotors resolved at rates apart cancel no lines between
+    ((220.5,), 4.14, 230.0, True, False),          # the power 4 % off the comb: no agreement
+    ((220.5,), 4.14, 219.2, False, False),         # a power that does not repeat whole tells nothing
+])
+def test_a_comb_stands_against_the_echo_period_only_on_a_whole_power_that_no_phase_lock_explains(
+        chopping_hz, ratio, power_hz, whole, stands):
+    from mdpipe.process.features import _comb_by_power
+    from mdpipe.process.flashes import PowerPeriod
+    found = PowerPeriod(period_s=1.0 / power_hz, whole=whole)
+    assert _comb_by_power(found, np.array(chopping_hz), ratio) is stands
+    assert _comb_by_power(None, np.array(chopping_hz), ratio) is False

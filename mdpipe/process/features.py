@@ -679,9 +679,11 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     rotor's value: it averages over the whole dwell); a whole-number ratio is an ambiguity and
     nothing is reported, unless the comb is unfolded, every k-th of its lines stands out and the echo's rate is
     k times its spacing: the chopping is then the echo's rate, the rate the comb's under N = k assumed (the
-    least count: one blade differing), or the comb is folded at a whole fraction of flash times at which the power
-    repeats whole (rotors whose lines between the comb's cancel flash a whole number of times per comb period, but
-    their power does not repeat whole at the flashes): the flash times stand. Flash times twice a folded comb are an
+    least count: one blade differing), or the comb is folded at a whole fraction or multiple of flash times at which the
+    power repeats whole (rotors whose lines between the comb's cancel flash a whole number of times per comb period, but
+    their power does not repeat whole at the flashes; a rotor chopping at the comb would flash between the flash
+    times): the flash times stand; or the comb is unfolded and the power repeats whole at it (:func:`_comb_by_power`):
+    the comb stands. Flash times twice a folded comb are an
     odd N (flashing twice per chopping period) or an even N with one blade differing (the comb lines the turn
     rate): the blade count, given or measured, tells which, or every second line of the comb standing out (a turn of
     2 blades, one differing; not where the chopping comb folded once falls on the comb's odd orders,
@@ -764,6 +766,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         note = f"rotation not estimable: {ambiguity}"
         return Rotation.withheld("ambiguous_period", note)
     chopping_hz, measured_n, pattern, least_n, flashes_only, alternating = None, None, None, None, False, False
+    comb_note = ""  # how a comb stood against the echo's period, for an `ok` rate's note
 
     def by_flash_times():
         """(withheld Rotation or None, chopping frequency, flashes alternating range sides) from the aliased
@@ -818,9 +821,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # echo's rate is the chopping; the comb a turn of k blades, one differing, or of 2k or 3k whose lines
             # between stay under the noise (a 6-blade rotor's comb lay at 3 f_rot): k is the least count
             chopping_hz, least_n = chopping_hz * k, k
-        elif aliased and (not _whole_ratio(ratio) or (ratio > 1 and _whole_multiple(power(), timed_hz) == 1)):
+        elif aliased and (not _whole_ratio(ratio) or _whole_multiple(power(), timed_hz) == 1):
             # folded combs coincide by chance; flash times do not (nor those the power repeats whole at: a comb at
-            # a whole fraction of them, its lines between cancelling, is no rotor's whose power repeats so)
+            # a whole fraction of them, its lines between cancelling, is no rotor's whose power repeats so; a comb
+            # at a whole multiple of them has no flashes between theirs, which the power would repeat at)
             held, chopping_hz, alternating = by_flash_times()
             if held:
                 return held
@@ -832,6 +836,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                 # differing) of N = pattern blades (four K-band 3-blade rotors 6 % apart, one blade 1.34 times the
                 # others: a comb at 100.4 Hz, flash times at 601 Hz; N had been assumed)
                 measured_n = pattern
+        elif not aliased and _comb_by_power(power(), chopping_hz, ratio):
+            comb_note = (f"the echo's period, {timed_hz:.4g} Hz, set aside: the line comb at {centre:.4g} Hz and the "
+                         f"echo's power, repeating whole at {1.0 / power().period_s:.4g} Hz, agree")
         else:
             note = (f"rotation not estimable: the line comb says {centre:.4g} Hz and the echo's "
                     f"{'flash times' if aliased else 'period'} {timed_hz:.4g} Hz; the dwell does not tell which")
@@ -936,7 +943,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         measured = Measured(rate, "assumed_blades", f"rotation rate assumes N = {blades} blades (the echo does not "
                             "tell the blade count; give --blades)")
     else:
-        measured = Measured(rate, OK, turn_note)
+        measured = Measured(rate, OK, "; ".join(n for n in (turn_note, comb_note) if n))
     return Rotation(chopping, measured, rates, blades, source)
 
 
@@ -1086,6 +1093,28 @@ def _on_span_grid(frequency_hz, *, prf_hz, dwell_s):
     """Whether ``frequency_hz`` is the PRF over a whole number M within what the dwell resolves (``1 / dwell_s``: M
     chirps a period, drifting less than a chirp over the dwell), where a whole multiple of it folds onto it."""
     return on_chirp_grid(prf_hz / frequency_hz, dwell_chirps=dwell_s * prf_hz)
+
+
+def _comb_by_power(found, chopping_hz, ratio):
+    """Whether an unaliased comb (chopping frequencies ``chopping_hz``) stands against the echo's period, ``ratio``
+    times the comb's median, that no blade count reconciles: the echo's power (``found``, a
+    :class:`~mdpipe.process.flashes.PowerPeriod` or None) repeats whole at the comb's median, within ``AGREEMENT``,
+    and the period is no whole fraction of the comb, or the comb resolved rotors at rates apart.
+
+    The comb (the dwell's lines) and the power (its flashes' repeat, blind to their phases) are read apart and
+    agree; the period, the complex echo's autocorrelation, is the one reading out. Rotors at one rate a whole
+    fraction of a chopping period apart cancel the lines between their comb's every k-th and flash k times per
+    chopping period: comb and power then agree at k times the chopping, which rotors at rates apart cannot do
+    (their phases drift), and a period at 1/k of the comb may be the chopping. Measured: a
+    quadrotor at X band given N = 2 (comb 220.5 Hz, power 219.2 Hz, period 912 Hz; truth 218.5) and two pairs of
+    2-blade rotors at X band resolved 1-2 % apart (comb 140.0 and 136.5 Hz, power 140.8 and 135.1 Hz, periods at
+    1/5 and 1/2 of the comb; truth 140.1 and 136.5)."""
+    if found is None or not found.whole:
+        return False
+    comb_hz = float(np.median(chopping_hz))
+    if not _agrees(1.0 / found.period_s / comb_hz):
+        return False
+    return len(chopping_hz) > 1 or not (ratio < 1 and _whole_ratio(ratio))
 
 
 def _whole_multiple(found, frequency_hz):
