@@ -2,6 +2,7 @@
 a blade count given wrongly. Each asserts the physics' number or a named status, never a silent wrong value.
 """
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -1777,7 +1778,7 @@ def test_a_comb_and_a_whole_power_that_agree_outweigh_the_echo_period(tmp_path):
     """A quadrotor of the seed 4321 draw of the default sweep (scene 5) at X band, seen from 83 deg, N = 2 given:
     rotors 106.6-111.6 rev/s (4.6 % apart), chopping at 218.5 Hz on average. The comb reads 220.5 Hz and the
     echo's power repeats whole at 219.2 Hz, while the complex echo's period reads 912 Hz (4.14 times the comb, no
-    whole ratio): withheld as `ambiguous_period`, one reading against two, before. The comb stands: within 1 %."""
+    whole ratio): withheld as `ambiguous_period`, one reading against two, before. The comb stands: within 0.91 %."""
     radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=8.54665e-05, chirp_period_s=0.000106833,
                  sample_rate_hz=748831.4142266267, n_samples=64, n_chirps=4276, n_channels=2)
     rates = [106.633, -108.71, 111.569, -110.08]
@@ -1802,9 +1803,10 @@ def test_a_comb_and_a_whole_power_that_agree_outweigh_the_echo_period(tmp_path):
 def test_flash_times_the_power_repeats_whole_at_outweigh_a_folded_comb_at_their_multiple(tmp_path):
     """A quadrotor of the held-out drone sweep (scene 174) at 76.5 GHz, N = 2 given, with its clutter: four rotors
     at 82.4 rev/s, chopping at 164.8 Hz, its blades' band folded. The flash times read 164.83 Hz and the echo's
-    power repeats whole at 164.84 Hz, a folded comb at three times that, 494.5 Hz (a chance fold: a rotor chopping
-    so would flash between the flash times, and the power would repeat there): withheld before, as a comb at a
-    whole multiple of flash times. The flash times stand: within 0.1 %."""
+    power, resolved within the ramp, repeats whole at 164.84 Hz, a folded comb at three times that, 494.5 Hz: a
+    rotor chopping so would flash between the flash times, and with ramps over 0.8 of the chirp period no two of
+    three passages fall between them, so the power within the ramp would repeat there. Withheld before, as a comb
+    at a whole multiple of flash times. The flash times stand: within 0.01 %."""
     radar = dict(f_start_hz=76.5e9, f_stop_hz=76.75e9, ramp_up_s=3.19333e-05, chirp_period_s=3.99167e-05,
                  sample_rate_hz=2004177.4593919201, n_samples=64, n_chirps=17463, n_channels=1)
     rates = [82.3778, -82.4338, 82.4194, -82.4036]
@@ -1829,14 +1831,29 @@ def test_flash_times_the_power_repeats_whole_at_outweigh_a_folded_comb_at_their_
 @pytest.mark.parametrize("chopping_hz, ratio, power_hz, whole, stands", [
     ((220.5,), 4.14, 219.2, True, True),           # the period at no whole ratio: the comb and the power stand
     ((220.5,), 1 / 3, 219.2, True, False),         # a third of the comb: rotors a third apart, comb and power at 3x
-    ((140.8, 139.2), 1 / 5, 140.8, True, True),    # rotors resolved at rates apart cancel no lines between
+    ((140.8, 139.2), 1 / 5, 140.8, True, False),   # combs resolved apart may each hold rotors at one rate
+    ((220.5,), 2.0, 219.2, True, False),           # twice the comb: one blade differing lines the turn in both
     ((220.5,), 4.14, 230.0, True, False),          # the power 4 % off the comb: no agreement
     ((220.5,), 4.14, 219.2, False, False),         # a power that does not repeat whole tells nothing
 ])
-def test_a_comb_stands_against_the_echo_period_only_on_a_whole_power_that_no_phase_lock_explains(
+def test_a_comb_stands_against_the_echo_period_only_on_a_whole_power_at_no_whole_ratio(
         chopping_hz, ratio, power_hz, whole, stands):
-    from mdpipe.process.features import _comb_by_power
+    from mdpipe.process.features import _comb_agrees_with_power
     from mdpipe.process.flashes import PowerPeriod
     found = PowerPeriod(period_s=1.0 / power_hz, whole=whole)
-    assert _comb_by_power(found, np.array(chopping_hz), ratio) is stands
-    assert _comb_by_power(None, np.array(chopping_hz), ratio) is False
+    agrees = functools.partial(_comb_agrees_with_power, chopping_hz=np.array(chopping_hz), period_ratio=ratio)
+    assert agrees(found, count_from_comb=False) is stands
+    assert agrees(None, count_from_comb=False) is False
+    # a chopping resting on a count the comb's own pattern measured (none given) is no second reading
+    assert agrees(found, count_from_comb=True) is False
+
+
+@pytest.mark.parametrize("k, ramp_share", [(2, 0.95), (3, 0.6), (5, 0.35)])
+def test_flash_times_never_stand_against_a_folded_comb_whose_passages_the_gaps_could_hide(k, ramp_share):
+    """k - 1 of k passages, (k - 2) / k of the chirp period apart, fit in a gap between ramps of 1 - ramp_share
+    (always for k = 2): the flash times could be every k-th flash, whatever the power repeats at."""
+    from types import SimpleNamespace
+    from mdpipe.process.features import _no_passages_hidden
+    ramp = SimpleNamespace(ramp_share=ramp_share)
+    assert _no_passages_hidden(lambda: ramp, 164.8, k, prf_hz=25052.0) is False
+    assert _no_passages_hidden(None, 164.8, 3, prf_hz=25052.0) is False  # the ramp not read in parts

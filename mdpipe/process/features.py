@@ -679,15 +679,16 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     rotor's value: it averages over the whole dwell); a whole-number ratio is an ambiguity and
     nothing is reported, unless the comb is unfolded, every k-th of its lines stands out and the echo's rate is
     k times its spacing: the chopping is then the echo's rate, the rate the comb's under N = k assumed (the
-    least count: one blade differing), or the comb is folded at a whole fraction or multiple of flash times at which the
-    power repeats whole (rotors whose lines between the comb's cancel flash a whole number of times per comb period, but
-    their power does not repeat whole at the flashes; a rotor chopping at the comb would flash between the flash
-    times): the flash times stand; or the comb is unfolded and the power repeats whole at it (:func:`_comb_by_power`):
-    the comb stands. Flash times twice a folded comb are an
-    odd N (flashing twice per chopping period) or an even N with one blade differing (the comb lines the turn
-    rate): the blade count, given or measured, tells which, or every second line of the comb standing out (a turn of
-    2 blades, one differing; not where the chopping comb folded once falls on the comb's odd orders,
-    :func:`_folds_onto_odd_orders`); without them nothing is reported. Flash times alternating
+    least count: one blade differing), or the comb is folded at a whole fraction of flash times at which the power
+    repeats whole (rotors whose lines between the comb's cancel flash a whole number of times per comb period, but
+    their power does not repeat whole at the flashes), or at a whole multiple k of flash times at which the power
+    resolved within the ramp repeats whole, the gaps between ramps too short to hide the passages between theirs
+    (:func:`_no_passages_hidden`): the flash times stand; or the comb is unfolded, the echo's period at no whole ratio
+    to it, and the power repeats whole at it (:func:`_comb_agrees_with_power`): the comb stands. Flash times twice a
+    folded comb are an odd N (flashing twice per chopping period) or an even N with one blade differing (the comb
+    lines the turn rate): the blade count, given or measured, tells which, or every second line of the comb
+    standing out (a turn of 2 blades, one differing; not where the chopping comb folded once falls on the comb's odd
+    orders, :func:`_folds_onto_odd_orders`); without them nothing is reported. Flash times alternating
     range sides (an odd N) at 2k times a folded comb whose every k-th line stands out measure N = k (the comb the turn
     rate, one blade differing). A folded comb without
     flash times is taken where, N given or measured, the power repeating whole (:func:`_folded_comb_by_power`) or
@@ -821,10 +822,12 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # echo's rate is the chopping; the comb a turn of k blades, one differing, or of 2k or 3k whose lines
             # between stay under the noise (a 6-blade rotor's comb lay at 3 f_rot): k is the least count
             chopping_hz, least_n = chopping_hz * k, k
-        elif aliased and (not _whole_ratio(ratio) or _whole_multiple(power(), timed_hz) == 1):
+        elif aliased and (not _whole_ratio(ratio) or (ratio > 1 and _whole_multiple(power(), timed_hz) == 1)
+                          or (ratio < 1 and _no_passages_hidden(ramp, timed_hz, _whole_ratio(ratio), prf_hz=prf_hz))):
             # folded combs coincide by chance; flash times do not (nor those the power repeats whole at: a comb at
-            # a whole fraction of them, its lines between cancelling, is no rotor's whose power repeats so; a comb
-            # at a whole multiple of them has no flashes between theirs, which the power would repeat at)
+            # a whole fraction of them, its lines between cancelling, is no rotor's whose power repeats so; nor, a
+            # comb at a whole multiple of them, those the power resolved within the ramp repeats whole at, where
+            # the gaps between ramps cannot hide the passages between theirs)
             held, chopping_hz, alternating = by_flash_times()
             if held:
                 return held
@@ -836,7 +839,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                 # differing) of N = pattern blades (four K-band 3-blade rotors 6 % apart, one blade 1.34 times the
                 # others: a comb at 100.4 Hz, flash times at 601 Hz; N had been assumed)
                 measured_n = pattern
-        elif not aliased and _comb_by_power(power(), chopping_hz, ratio):
+        elif not aliased and _comb_agrees_with_power(power(), chopping_hz, period_ratio=ratio,
+                                                     count_from_comb=n_blades is None and measured_n is not None):
             comb_note = (f"the echo's period, {timed_hz:.4g} Hz, set aside: the line comb at {centre:.4g} Hz and the "
                          f"echo's power, repeating whole at {1.0 / power().period_s:.4g} Hz, agree")
         else:
@@ -891,6 +895,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
 
     turn_note = ""
     if (not aliased and n_blades is not None and n_blades % 2 == 0 and measured_n is None and least_n is None
+            and not comb_note  # (a power repeating whole once per spacing stood for the comb: no doubling)
             and parity_and_doubling(float(chopping_hz[0])) == (None, True)):  # (flashes by turns: an odd N's)
         turned = _turn_comb(chopping_hz, n_blades=n_blades)
         if isinstance(turned, Rotation):
@@ -943,7 +948,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         measured = Measured(rate, "assumed_blades", f"rotation rate assumes N = {blades} blades (the echo does not "
                             "tell the blade count; give --blades)")
     else:
-        measured = Measured(rate, OK, "; ".join(n for n in (turn_note, comb_note) if n))
+        measured = Measured(rate, OK, turn_note)
+    if comb_note:  # how the comb stood (the rate's note is the row's sentence on it, ok or not)
+        measured = Measured(rate, measured.status, "; ".join(n for n in (measured.note, comb_note) if n))
     return Rotation(chopping, measured, rates, blades, source)
 
 
@@ -1095,26 +1102,49 @@ def _on_span_grid(frequency_hz, *, prf_hz, dwell_s):
     return on_chirp_grid(prf_hz / frequency_hz, dwell_chirps=dwell_s * prf_hz)
 
 
-def _comb_by_power(found, chopping_hz, ratio):
-    """Whether an unaliased comb (chopping frequencies ``chopping_hz``) stands against the echo's period, ``ratio``
-    times the comb's median, that no blade count reconciles: the echo's power (``found``, a
-    :class:`~mdpipe.process.flashes.PowerPeriod` or None) repeats whole at the comb's median, within ``AGREEMENT``,
-    and the period is no whole fraction of the comb, or the comb resolved rotors at rates apart.
+def _comb_agrees_with_power(found, chopping_hz, *, period_ratio, count_from_comb):
+    """Whether an unaliased comb (chopping frequencies ``chopping_hz``) stands against the echo's period,
+    ``period_ratio`` times the comb's median, that no blade count reconciles: the echo's power (``found``, a
+    :class:`~mdpipe.process.flashes.PowerPeriod` or None) repeats whole at the comb's median (within ``AGREEMENT``),
+    the period lies at no whole ratio to the comb, and the chopping does not rest on a blade count read from the
+    comb's own line pattern alone (``count_from_comb``: none given).
 
-    The comb (the dwell's lines) and the power (its flashes' repeat, blind to their phases) are read apart and
-    agree; the period, the complex echo's autocorrelation, is the one reading out. Rotors at one rate a whole
-    fraction of a chopping period apart cancel the lines between their comb's every k-th and flash k times per
-    chopping period: comb and power then agree at k times the chopping, which rotors at rates apart cannot do
-    (their phases drift), and a period at 1/k of the comb may be the chopping. Measured: a
-    quadrotor at X band given N = 2 (comb 220.5 Hz, power 219.2 Hz, period 912 Hz; truth 218.5) and two pairs of
-    2-blade rotors at X band resolved 1-2 % apart (comb 140.0 and 136.5 Hz, power 140.8 and 135.1 Hz, periods at
-    1/5 and 1/2 of the comb; truth 140.1 and 136.5)."""
-    if found is None or not found.whole:
+    The comb (the dwell's lines) and the power (its flashes' repeat, blind to their phases) are readings of
+    different kinds and agree; the period, the complex echo's autocorrelation, is the one reading out. At a whole
+    ratio the disagreement has a cause that leaves comb and power agreeing on a wrong rate: rotors at one rate a
+    fraction of a chopping period apart cancel the lines between a comb's every k-th and flash k times per chopping
+    period (comb and power at k times a chopping the period reads), and one blade differing lines the turn rate
+    (comb and power at the turn, the period at the chopping). A count the line pattern measured is no second reading
+    either: rotors at one rate and phase fool it, and an odd N's power repeats twice per chopping period (two 3-blade
+    rotors at 89.7 rev/s, 60 deg apart, in `make offmodel-blades`: their comb at the chopping read as the turn of 2
+    blades, one differing, and the chopping taken at twice it, where the power repeated; 3 times the rate, `ok`,
+    had this test not been made). Measured: a quadrotor at X band given N = 2 (comb 220.5 Hz, power 219.2 Hz,
+    period 912 Hz, 4.14 times the comb; truth 218.5 Hz)."""
+    if count_from_comb or _whole_ratio(period_ratio):
         return False
-    comb_hz = float(np.median(chopping_hz))
-    if not _agrees(1.0 / found.period_s / comb_hz):
+    return _whole_multiple(found, float(np.median(chopping_hz))) == 1
+
+
+def _no_passages_hidden(ramp, flash_hz, k, *, prf_hz):
+    """Whether flash times at ``flash_hz`` stand against a folded comb at ``k`` (>= 2) times them: the echo's power
+    resolved within the ramp (``ramp()``, a :class:`~mdpipe.process.flashes.RampTrain`, or None: not read) repeats
+    whole at them, and the gap between ramps (``1 - ramp_share`` of the chirp period) is too short to hold ``k - 1``
+    of ``k`` passages.
+
+    A rotor chopping at the comb flashes ``k`` times per flash-time period. Flashes shorter than a chirp fall where
+    the PRF puts them, ``1 / k`` of the chirp period apart on its grid: those within the ramp are caught whole in
+    its parts (the power there would repeat at the comb), those between the ramps not at all. Caught every k-th
+    passage only, as whole ramps, weighing a flash by where it falls in their window, can leave them (six rotors
+    chopping at 161 Hz left flash times every 432 chirps, 27.6 Hz, in the held-out drone sweep), needs ``k - 1`` of
+    the passages,
+    ``(k - 2) / k`` of the period apart, between the ramps: never for ``1 - ramp_share < (k - 2) / k``, and always
+    possible for k = 2. A 77 GHz quadrotor of the held-out sweep, ramps over 0.8 of the chirp: flash times 164.83 Hz,
+    the power resolved within the ramp whole at 164.84 Hz, a folded comb at 3 times them (truth 164.82 Hz)."""
+    if k < 2 or ramp is None or ramp() is None:
         return False
-    return len(chopping_hz) > 1 or not (ratio < 1 and _whole_ratio(ratio))
+    if 1.0 - ramp().ramp_share >= (k - 2) / k:
+        return False
+    return bool(ramp_repeats_whole(ramp(), prf_hz / flash_hz, shortest_chirps=prf_hz / combs.MAX_CHOP_HZ))
 
 
 def _whole_multiple(found, frequency_hz):
