@@ -1831,7 +1831,7 @@ def test_flash_times_the_power_repeats_whole_at_outweigh_a_folded_comb_at_their_
 @pytest.mark.parametrize("chopping_hz, ratio, power_hz, whole, stands", [
     ((220.5,), 4.14, 219.2, True, True),           # the period at no whole ratio: the comb and the power stand
     ((220.5,), 1 / 3, 219.2, True, False),         # a third of the comb: rotors a third apart, comb and power at 3x
-    ((140.8, 139.2), 1 / 5, 140.8, True, False),   # combs resolved apart may each hold rotors at one rate
+    ((140.8, 139.2), 1 / 5, 140.8, True, False),   # a whole fraction, combs resolved apart or not
     ((220.5,), 2.0, 219.2, True, False),           # twice the comb: one blade differing lines the turn in both
     ((220.5,), 4.14, 230.0, True, False),          # the power 4 % off the comb: no agreement
     ((220.5,), 4.14, 219.2, False, False),         # a power that does not repeat whole tells nothing
@@ -1844,16 +1844,36 @@ def test_a_comb_stands_against_the_echo_period_only_on_a_whole_power_at_no_whole
     agrees = functools.partial(_comb_agrees_with_power, chopping_hz=np.array(chopping_hz), period_ratio=ratio)
     assert agrees(found, count_from_comb=False) is stands
     assert agrees(None, count_from_comb=False) is False
-    # a chopping resting on a count the comb's own pattern measured (none given) is no second reading
+    # a chopping resting on a count the comb's own line pattern measured (or matched, given) is no second reading
     assert agrees(found, count_from_comb=True) is False
 
 
-@pytest.mark.parametrize("k, ramp_share", [(2, 0.95), (3, 0.6), (5, 0.35)])
-def test_flash_times_never_stand_against_a_folded_comb_whose_passages_the_gaps_could_hide(k, ramp_share):
-    """k - 1 of k passages, (k - 2) / k of the chirp period apart, fit in a gap between ramps of 1 - ramp_share
-    (always for k = 2): the flash times could be every k-th flash, whatever the power repeats at."""
-    from types import SimpleNamespace
+def _ramp_train_of(flash_chirps, *, ramp_share, n_chirps=12000, parts=8, seed=1):
+    """A RampTrain of flashes shorter than a chirp every ``flash_chirps`` (from a third of a chirp in), each caught
+    whole in the part of the ramp it falls in, none between the ramps, over noise."""
+    from mdpipe.process.flashes import ramp_train
+    rng = np.random.default_rng(seed)
+    slots = (rng.normal(size=(n_chirps, parts)) + 1j * rng.normal(size=(n_chirps, parts))) * 0.1
+    for time in np.arange(0.34, n_chirps - 1, flash_chirps):
+        chirp, within = int(time), time % 1.0
+        if within < ramp_share:
+            slots[chirp, int(within / ramp_share * parts)] += 3.0 * np.exp(2j * np.pi * rng.random())
+    return ramp_train(slots, ramp_share=ramp_share, prf_hz=15000.0)
+
+
+@pytest.mark.parametrize("flash_chirps, ramp_share, k, stand", [
+    (32.0, 0.8, 3, True),        # flashes every 32 chirps: none between them to see within the ramp
+    (32.0 / 3, 0.8, 3, False),   # three times as many, each seen in its part: the comb's rate
+    (32.0 / 3, 0.6, 3, False),   # gaps of 0.4 chirp may hide two of three passages: not read
+    (32.0, 0.8, 5, False),       # two of five passages 2/5 apart repeat at no P / j: not read
+    (32.0, 0.8, 2, False),       # one of two passages may always fall between the ramps
+])
+def test_flash_times_stand_against_a_comb_at_three_times_them_only_where_the_ramp_would_show_its_flashes(
+        flash_chirps, ramp_share, k, stand):
+    """Flash times every 32 chirps (PRF / 32) against a folded comb at k times them: they stand where the power
+    resolved within the ramp repeats whole at 32 chirps and no passage of a rotor chopping at the comb could hide
+    between the ramps (k = 3, ramps over 2/3 of the chirp)."""
     from mdpipe.process.features import _no_passages_hidden
-    ramp = SimpleNamespace(ramp_share=ramp_share)
-    assert _no_passages_hidden(lambda: ramp, 164.8, k, prf_hz=25052.0) is False
-    assert _no_passages_hidden(None, 164.8, 3, prf_hz=25052.0) is False  # the ramp not read in parts
+    train = _ramp_train_of(flash_chirps, ramp_share=ramp_share)
+    assert _no_passages_hidden(lambda: train, 15000.0 / 32.0, k, prf_hz=15000.0) is stand
+    assert _no_passages_hidden(None, 15000.0 / 32.0, k, prf_hz=15000.0) is False  # the ramp not read in parts

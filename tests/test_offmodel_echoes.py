@@ -173,6 +173,27 @@ def test_rotors_phased_at_one_rate_centred_on_their_body_are_not_read_at_twice_t
     assert row["rotation_rate_hz"] == pytest.approx(truth["rate"], rel=0.005)
 
 
+
+@pytest.mark.parametrize("given", [None, 3])
+def test_rotors_phased_at_one_rate_leave_comb_and_power_agreeing_on_no_blade_count_the_pattern_read(tmp_path, given):
+    """Two 3-blade rotors at exactly 89.7 rev/s, 60 deg apart, X band (`make offmodel-blades`, `odd_phased` 3): their
+    comb lies at the chopping, 269 Hz, every second line standing out as one blade of two differing would make it,
+    the power repeats whole at 538 Hz (an odd N flashes twice per chopping period) and the echo's period reads 287.5
+    Hz. Comb and power agree only on the chopping the line pattern's count made of the comb, 538 Hz: the period
+    is not set aside for them, N given or not (3 times the rate, `ok`, without N; 538 Hz as `blade_conflict` with
+    N = 3 given, the pattern matching it)."""
+    from bench_blade_count import run_scene as blade_scene
+    from mdpipe.params import ProcessParams
+    from mdpipe.process.pipeline import process_capture
+    _, _, truth, row = blade_scene("odd_phased", 3, tmp_path)
+    if given is not None:
+        row = process_capture(str(tmp_path / "odd_phased_3.h5"),
+                              ProcessParams(elevation_deg=truth["beta"], n_blades=given)).rows[0]
+    assert row["class"] == "drone"
+    assert row["chopping_freq_hz"] is None and row["chopping_freq_hz_status"] == "ambiguous_period"
+    assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == "ambiguous_period"
+
+
 def test_the_benchmark_splits_the_rotation_coverage_by_band():
     """Three drones where the rotation is measurable (N given, loud, three turns, chopping under PRF / 2) at X and 77
     GHz, one not (N not given): per band, measurable / given ok / ok within 2 %."""

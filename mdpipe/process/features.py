@@ -681,14 +681,14 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     k times its spacing: the chopping is then the echo's rate, the rate the comb's under N = k assumed (the
     least count: one blade differing), or the comb is folded at a whole fraction of flash times at which the power
     repeats whole (rotors whose lines between the comb's cancel flash a whole number of times per comb period, but
-    their power does not repeat whole at the flashes), or at a whole multiple k of flash times at which the power
-    resolved within the ramp repeats whole, the gaps between ramps too short to hide the passages between theirs
-    (:func:`_no_passages_hidden`): the flash times stand; or the comb is unfolded, the echo's period at no whole ratio
-    to it, and the power repeats whole at it (:func:`_comb_agrees_with_power`): the comb stands. Flash times twice a
-    folded comb are an odd N (flashing twice per chopping period) or an even N with one blade differing (the comb
-    lines the turn rate): the blade count, given or measured, tells which, or every second line of the comb
-    standing out (a turn of 2 blades, one differing; not where the chopping comb folded once falls on the comb's odd
-    orders, :func:`_folds_onto_odd_orders`); without them nothing is reported. Flash times alternating
+    their power does not repeat whole at the flashes), or at three times flash times at which the power resolved
+    within the ramp repeats whole, the gaps between ramps too short to hide the passages between theirs (N not
+    given odd: :func:`_no_passages_hidden`): the flash times stand; or the comb is unfolded, the echo's period at no
+    whole ratio to it, and the power repeats whole at it (:func:`_comb_agrees_with_power`): the comb stands. Flash
+    times twice a folded comb are an odd N (flashing twice per chopping period) or an even N with one blade differing
+    (the comb lines the turn rate): the blade count, given or measured, tells which, or every second line of the
+    comb standing out (a turn of 2 blades, one differing; not where the chopping comb folded once falls on the comb's
+    odd orders, :func:`_folds_onto_odd_orders`); without them nothing is reported. Flash times alternating
     range sides (an odd N) at 2k times a folded comb whose every k-th line stands out measure N = k (the comb the turn
     rate, one blade differing). A folded comb without
     flash times is taken where, N given or measured, the power repeating whole (:func:`_folded_comb_by_power`) or
@@ -823,11 +823,13 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # between stay under the noise (a 6-blade rotor's comb lay at 3 f_rot): k is the least count
             chopping_hz, least_n = chopping_hz * k, k
         elif aliased and (not _whole_ratio(ratio) or (ratio > 1 and _whole_multiple(power(), timed_hz) == 1)
-                          or (ratio < 1 and _no_passages_hidden(ramp, timed_hz, _whole_ratio(ratio), prf_hz=prf_hz))):
+                          or (ratio < 1 and not (n_blades or 0) % 2 and _whole_multiple(power(), timed_hz) == 1
+                              and _no_passages_hidden(ramp, timed_hz, _whole_ratio(ratio), prf_hz=prf_hz))):
             # folded combs coincide by chance; flash times do not (nor those the power repeats whole at: a comb at
             # a whole fraction of them, its lines between cancelling, is no rotor's whose power repeats so; nor, a
-            # comb at a whole multiple of them, those the power resolved within the ramp repeats whole at, where
-            # the gaps between ramps cannot hide the passages between theirs)
+            # comb at three times them, those the power resolved within the ramp repeats whole at, where the ramp's
+            # test reads any passage seen between theirs; not for an odd N given, which halves flash times that an
+            # odd N off the range bin's centre leaves at its chopping)
             held, chopping_hz, alternating = by_flash_times()
             if held:
                 return held
@@ -840,7 +842,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
                 # others: a comb at 100.4 Hz, flash times at 601 Hz; N had been assumed)
                 measured_n = pattern
         elif not aliased and _comb_agrees_with_power(power(), chopping_hz, period_ratio=ratio,
-                                                     count_from_comb=n_blades is None and measured_n is not None):
+                                                     count_from_comb=measured_n is not None):
             comb_note = (f"the echo's period, {timed_hz:.4g} Hz, set aside: the line comb at {centre:.4g} Hz and the "
                          f"echo's power, repeating whole at {1.0 / power().period_s:.4g} Hz, agree")
         else:
@@ -1107,7 +1109,7 @@ def _comb_agrees_with_power(found, chopping_hz, *, period_ratio, count_from_comb
     ``period_ratio`` times the comb's median, that no blade count reconciles: the echo's power (``found``, a
     :class:`~mdpipe.process.flashes.PowerPeriod` or None) repeats whole at the comb's median (within ``AGREEMENT``),
     the period lies at no whole ratio to the comb, and the chopping does not rest on a blade count read from the
-    comb's own line pattern alone (``count_from_comb``: none given).
+    comb's own line pattern (``count_from_comb``: measured, or a count given that the pattern matched).
 
     The comb (the dwell's lines) and the power (its flashes' repeat, blind to their phases) are readings of
     different kinds and agree; the period, the complex echo's autocorrelation, is the one reading out. At a whole
@@ -1118,7 +1120,8 @@ def _comb_agrees_with_power(found, chopping_hz, *, period_ratio, count_from_comb
     either: rotors at one rate and phase fool it, and an odd N's power repeats twice per chopping period (two 3-blade
     rotors at 89.7 rev/s, 60 deg apart, in `make offmodel-blades`: their comb at the chopping read as the turn of 2
     blades, one differing, and the chopping taken at twice it, where the power repeated; 3 times the rate, `ok`,
-    had this test not been made). Measured: a quadrotor at X band given N = 2 (comb 220.5 Hz, power 219.2 Hz,
+    had this test not been made, and with N = 3 given, the pattern matching it, a chopping of 538 Hz for 269 as a
+    `blade_conflict`). Measured: a quadrotor at X band given N = 2 (comb 220.5 Hz, power 219.2 Hz,
     period 912 Hz, 4.14 times the comb; truth 218.5 Hz)."""
     if count_from_comb or _whole_ratio(period_ratio):
         return False
@@ -1126,23 +1129,23 @@ def _comb_agrees_with_power(found, chopping_hz, *, period_ratio, count_from_comb
 
 
 def _no_passages_hidden(ramp, flash_hz, k, *, prf_hz):
-    """Whether flash times at ``flash_hz`` stand against a folded comb at ``k`` (>= 2) times them: the echo's power
-    resolved within the ramp (``ramp()``, a :class:`~mdpipe.process.flashes.RampTrain`, or None: not read) repeats
-    whole at them, and the gap between ramps (``1 - ramp_share`` of the chirp period) is too short to hold ``k - 1``
-    of ``k`` passages.
+    """Whether flash times at ``flash_hz`` stand against a folded comb at ``k`` times them as the echo's power
+    resolved within the ramp (``ramp()``, a :class:`~mdpipe.process.flashes.RampTrain`, or None: not read) tells:
+    for k = 3, it repeats whole at them and the gap between ramps (``1 - ramp_share`` of the chirp period) is under a
+    third of the chirp period.
 
-    A rotor chopping at the comb flashes ``k`` times per flash-time period. Flashes shorter than a chirp fall where
-    the PRF puts them, ``1 / k`` of the chirp period apart on its grid: those within the ramp are caught whole in
-    its parts (the power there would repeat at the comb), those between the ramps not at all. Caught every k-th
-    passage only, as whole ramps, weighing a flash by where it falls in their window, can leave them (six rotors
-    chopping at 161 Hz left flash times every 432 chirps, 27.6 Hz, in the held-out drone sweep), needs ``k - 1`` of
-    the passages,
-    ``(k - 2) / k`` of the period apart, between the ramps: never for ``1 - ramp_share < (k - 2) / k``, and always
-    possible for k = 2. A 77 GHz quadrotor of the held-out sweep, ramps over 0.8 of the chirp: flash times 164.83 Hz,
-    the power resolved within the ramp whole at 164.84 Hz, a folded comb at 3 times them (truth 164.82 Hz)."""
-    if k < 2 or ramp is None or ramp() is None:
-        return False
-    if 1.0 - ramp().ramp_share >= (k - 2) / k:
+    A rotor chopping at the comb flashes 3 times per flash-time period P. On the PRF's grid, flashes shorter than a
+    chirp fall a third of the chirp period apart, those within the ramp caught whole in its parts, those between the
+    ramps not at all. Whole ramps, weighing a flash by where it falls in their window, can leave the flash times at P
+    (six rotors chopping at 161 Hz left flash times every 432 chirps, 27.6 Hz, in the held-out drone sweep). Within
+    the ramp, two passages seen P / 3 apart repeat at P / 3, which the ramp's test reads
+    (:func:`~mdpipe.process.flashes.ramp_repeats_whole`); one seen alone needs the other two, a third of the chirp
+    period apart, between the ramps. Not for other k: of 2 passages one may always fall between the ramps; for k >= 4
+    the test reads a repeat at P / k only with one at 2 P / k, which two passages P / k apart do not give, and two
+    passages 2 P / 5 apart repeat at no P / j (a synthetic ramp train at 5 times so passed it). A 77 GHz quadrotor
+    of the held-out sweep, ramps over 0.8 of the chirp: flash times 164.83 Hz, the power resolved within the ramp
+    whole at 164.84 Hz, a folded comb at 3 times them (truth 164.82 Hz)."""
+    if k != 3 or ramp is None or ramp() is None or 1.0 - ramp().ramp_share >= 1.0 / 3.0:
         return False
     return bool(ramp_repeats_whole(ramp(), prf_hz / flash_hz, shortest_chirps=prf_hz / combs.MAX_CHOP_HZ))
 
