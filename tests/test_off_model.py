@@ -1844,7 +1844,7 @@ def test_a_comb_stands_against_the_echo_period_only_on_a_whole_power_at_no_whole
     agrees = functools.partial(_comb_agrees_with_power, chopping_hz=np.array(chopping_hz), period_ratio=ratio)
     assert agrees(found, count_from_comb=False) is stands
     assert agrees(None, count_from_comb=False) is False
-    # a chopping resting on a count the comb's own line pattern measured (or matched, given) is no second reading
+    # a blade count the comb's own line pattern measured (N given or not) is no second reading
     assert agrees(found, count_from_comb=True) is False
 
 
@@ -1864,9 +1864,9 @@ def _ramp_train_of(flash_chirps, *, ramp_share, n_chirps=12000, parts=8, seed=1)
 @pytest.mark.parametrize("flash_chirps, ramp_share, k, stand", [
     (32.0, 0.8, 3, True),        # flashes every 32 chirps: none between them to see within the ramp
     (32.0 / 3, 0.8, 3, False),   # three times as many, each seen in its part: the comb's rate
-    (32.0 / 3, 0.6, 3, False),   # gaps of 0.4 chirp may hide two of three passages: not read
-    (32.0, 0.8, 5, False),       # two of five passages 2/5 apart repeat at no P / j: not read
-    (32.0, 0.8, 2, False),       # one of two passages may always fall between the ramps
+    (32.0, 0.6, 3, False),       # whole at 32 chirps, but gaps of 0.4 chirp could hide two of three passages
+    (32.0, 0.8, 5, False),       # not read for 5 (two of five passages 2/5 apart repeat at no P / j) ...
+    (32.0, 0.8, 2, False),       # ... nor for 2 (one of two passages may always fall between the ramps)
 ])
 def test_flash_times_stand_against_a_comb_at_three_times_them_only_where_the_ramp_would_show_its_flashes(
         flash_chirps, ramp_share, k, stand):

@@ -179,9 +179,9 @@ def test_rotors_phased_at_one_rate_leave_comb_and_power_agreeing_on_no_blade_cou
     """Two 3-blade rotors at exactly 89.7 rev/s, 60 deg apart, X band (`make offmodel-blades`, `odd_phased` 3): their
     comb lies at the chopping, 269 Hz, every second line standing out as one blade of two differing would make it,
     the power repeats whole at 538 Hz (an odd N flashes twice per chopping period) and the echo's period reads 287.5
-    Hz. Comb and power agree only on the chopping the line pattern's count made of the comb, 538 Hz: the period
+    Hz. Comb and power agree only on the chopping the line pattern's count (2) made of the comb, 538 Hz: the period
     is not set aside for them, N given or not (3 times the rate, `ok`, without N; 538 Hz as `blade_conflict` with
-    N = 3 given, the pattern matching it)."""
+    N = 3 given, the pattern's count in conflict with it)."""
     from bench_blade_count import run_scene as blade_scene
     from mdpipe.params import ProcessParams
     from mdpipe.process.pipeline import process_capture

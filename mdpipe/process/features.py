@@ -1108,8 +1108,8 @@ def _comb_agrees_with_power(found, chopping_hz, *, period_ratio, count_from_comb
     """Whether an unaliased comb (chopping frequencies ``chopping_hz``) stands against the echo's period,
     ``period_ratio`` times the comb's median, that no blade count reconciles: the echo's power (``found``, a
     :class:`~mdpipe.process.flashes.PowerPeriod` or None) repeats whole at the comb's median (within ``AGREEMENT``),
-    the period lies at no whole ratio to the comb, and the chopping does not rest on a blade count read from the
-    comb's own line pattern (``count_from_comb``: measured, or a count given that the pattern matched).
+    the period lies at no whole ratio to the comb, and no blade count was read from the comb's own line pattern
+    (``count_from_comb``: measured, N given or not).
 
     The comb (the dwell's lines) and the power (its flashes' repeat, blind to their phases) are readings of
     different kinds and agree; the period, the complex echo's autocorrelation, is the one reading out. At a whole
@@ -1120,8 +1120,8 @@ def _comb_agrees_with_power(found, chopping_hz, *, period_ratio, count_from_comb
     either: rotors at one rate and phase fool it, and an odd N's power repeats twice per chopping period (two 3-blade
     rotors at 89.7 rev/s, 60 deg apart, in `make offmodel-blades`: their comb at the chopping read as the turn of 2
     blades, one differing, and the chopping taken at twice it, where the power repeated; 3 times the rate, `ok`,
-    had this test not been made, and with N = 3 given, the pattern matching it, a chopping of 538 Hz for 269 as a
-    `blade_conflict`). Measured: a quadrotor at X band given N = 2 (comb 220.5 Hz, power 219.2 Hz,
+    had this test not been made; with N = 3 given, the pattern's count of 2 in conflict with it, a chopping of 538 Hz
+    for 269 as a `blade_conflict`). Measured: a quadrotor at X band given N = 2 (comb 220.5 Hz, power 219.2 Hz,
     period 912 Hz, 4.14 times the comb; truth 218.5 Hz)."""
     if count_from_comb or _whole_ratio(period_ratio):
         return False
@@ -1134,17 +1134,18 @@ def _no_passages_hidden(ramp, flash_hz, k, *, prf_hz):
     for k = 3, it repeats whole at them and the gap between ramps (``1 - ramp_share`` of the chirp period) is under a
     third of the chirp period.
 
-    A rotor chopping at the comb flashes 3 times per flash-time period P. On the PRF's grid, flashes shorter than a
-    chirp fall a third of the chirp period apart, those within the ramp caught whole in its parts, those between the
-    ramps not at all. Whole ramps, weighing a flash by where it falls in their window, can leave the flash times at P
-    (six rotors chopping at 161 Hz left flash times every 432 chirps, 27.6 Hz, in the held-out drone sweep). Within
-    the ramp, two passages seen P / 3 apart repeat at P / 3, which the ramp's test reads
-    (:func:`~mdpipe.process.flashes.ramp_repeats_whole`); one seen alone needs the other two, a third of the chirp
-    period apart, between the ramps. Not for other k: of 2 passages one may always fall between the ramps; for k >= 4
-    the test reads a repeat at P / k only with one at 2 P / k, which two passages P / k apart do not give, and two
-    passages 2 P / 5 apart repeat at no P / j (a synthetic ramp train at 5 times so passed it). A 77 GHz quadrotor
-    of the held-out sweep, ramps over 0.8 of the chirp: flash times 164.83 Hz, the power resolved within the ramp
-    whole at 164.84 Hz, a folded comb at 3 times them (truth 164.82 Hz)."""
+    A rotor chopping at the comb flashes 3 times per flash-time period P. Flashes shorter than a chirp are caught
+    whole in the part of the ramp they fall in, not at all between the ramps; whole ramps, weighing a flash by where
+    it falls in their window, can leave the flash times at P (six rotors chopping at 161 Hz left flash times every
+    432 chirps, 27.6 Hz, in the held-out drone sweep). With P off the chirp grid the passages drift through the ramp
+    and all are seen; with P a multiple of 3 chirps all three fall at one place, seen together (flash times at P / 3)
+    or not at all; else they fall a third of the chirp period apart: two seen within the ramp repeat at P / 3, which
+    the ramp's test reads (:func:`~mdpipe.process.flashes.ramp_repeats_whole`), and one seen alone needs the other
+    two between the ramps, a gap of a third of the chirp period. Not for other k: of 2 passages one may always fall
+    between the ramps, and for k = 5 two passages 2 P / 5 apart repeat at no P / j (a synthetic ramp train at 5
+    times so passed the test). A 77 GHz quadrotor of the held-out sweep, ramps over 0.8 of the chirp: flash times
+    164.83 Hz, the power resolved within the ramp whole at 164.84 Hz, a folded comb at 3 times them (truth
+    164.82 Hz)."""
     if k != 3 or ramp is None or ramp() is None or 1.0 - ramp().ramp_share >= 1.0 / 3.0:
         return False
     return bool(ramp_repeats_whole(ramp(), prf_hz / flash_hz, shortest_chirps=prf_hz / combs.MAX_CHOP_HZ))
