@@ -767,7 +767,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         note = f"rotation not estimable: {ambiguity}"
         return Rotation.withheld("ambiguous_period", note)
     chopping_hz, measured_n, pattern, least_n, flashes_only, alternating = None, None, None, None, False, False
-    comb_note = ""  # how a comb stood against the echo's period, for an `ok` rate's note
+    comb_note = ""  # how a comb stood against the echo's period, for the rate's note (ok or assumed)
 
     def by_flash_times():
         """(withheld Rotation or None, chopping frequency, flashes alternating range sides) from the aliased
