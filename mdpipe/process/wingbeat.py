@@ -202,8 +202,12 @@ def gated_pattern_autocorrelation(spec, *, noise_level, frame_rate, lit_db=SIGNA
     or fewer than ``MIN_WING_ROWS`` rows are lit.
     """
     gliding = _gliding(spec, noise_level=noise_level, frame_rate=frame_rate, lit_db=lit_db)
-    if gliding is None:
-        return None
+    return None if gliding is None else _bursts_autocorrelation(spec, gliding, frame_rate=frame_rate)
+
+
+def _bursts_autocorrelation(spec, gliding, *, frame_rate):
+    """:func:`gated_pattern_autocorrelation` of ``spec`` from its :func:`_gliding` rows and flapping frames
+    (``gliding``, not None)."""
     rows, flapping = gliding
     rows = np.log(rows + np.finfo(float).tiny)
     n = rows.shape[1]
@@ -306,10 +310,9 @@ def _short_bursts(found, frames):
     stays `ok`."""
     if np.isfinite(found.error_s):
         return found
-    flapping = frames.flap_bursts
-    if flapping is None:
+    if frames.flap_bursts is None:
         return found
-    runs = flapping[1]
+    runs = frames.flap_bursts[1]
     longest_s = float((runs[:, 1] - runs[:, 0]).max()) / frames.frame_rate
     return ShortBursts(found.period_s, longest_s) if longest_s < SHORT_BURST_BEATS * found.period_s else found
 
@@ -433,12 +436,24 @@ class WingFrames:
         return len(self.lit_rows(SIGNAL_ROW_PERCENTILES[-1], wings_only=True))
 
     @functools.cached_property
+    def gliding(self):
+        """The rows lit in a quarter of the frames and the frames in which they flap, where the bird glides between
+        bursts (:func:`_gliding`), else None; read once, for the bursts' pattern, cycle and length."""
+        return _gliding(self.spec, noise_level=self.noise_level, frame_rate=self.frame_rate, lit_db=self.lit_db)
+
+    @functools.cached_property
     def flap_bursts(self):
         """The flapping frames of a bird that glides between bursts and their :func:`bursts`, or None where it does
         not glide (:func:`flapping_frames` on the rows :func:`gated_pattern_autocorrelation` reads, not flapping in
-        ``MIN_GLIDE_SHARE`` of the dwell at least: :func:`_gliding`); read once, for the bursts' cycle and length."""
-        gliding = _gliding(self.spec, noise_level=self.noise_level, frame_rate=self.frame_rate, lit_db=self.lit_db)
-        return None if gliding is None else (gliding[1], bursts(gliding[1]))
+        ``MIN_GLIDE_SHARE`` of the dwell at least: :attr:`gliding`)."""
+        return None if self.gliding is None else (self.gliding[1], bursts(self.gliding[1]))
+
+    @functools.cached_property
+    def gated(self):
+        """The pattern autocorrelation within the flapping bursts (:func:`gated_pattern_autocorrelation`) and its
+        pairs, or None; read once, for the period within the bursts and for a whole-record period measured again."""
+        return None if self.gliding is None else _bursts_autocorrelation(self.spec, self.gliding,
+                                                                          frame_rate=self.frame_rate)
 
 
 def wing_frames(demodulated, *, prf_hz, noise_power, frame_s, weak=None, body_bins=BODY_LOBE_BINS, still=False):
@@ -633,11 +648,6 @@ def _stroke_signed(found, frames, wider_percentiles):
     return found
 
 
-def _gated(frames):
-    return gated_pattern_autocorrelation(frames.spec, noise_level=frames.noise_level, frame_rate=frames.frame_rate,
-                                         lit_db=frames.lit_db)
-
-
 def burst_cycle_s(frames):
     """The cycle (s) of a bird's flap-glide bursts in ``frames``: the median time between its switches from gliding
     to flapping, and between those from flapping to gliding (the record's own start and end are none); None where it
@@ -679,7 +689,7 @@ def _within_bursts(found, frames):
     autocorrelation pairs only frames of one burst, but rests on fewer pairs and peaks: where the bursts are
     short and many, the whole record reads closer (a crow flapping 1.0 s at a time: 0.1 % against 1.2 %).
     """
-    gated = _gated(frames)
+    gated = frames.gated
     if gated is None:
         return found
     r, _ = gated
@@ -703,7 +713,7 @@ def _gated_period(frames):
     overlapping frames of speckle correlate by chance); repeats at 3T are not asked for (a burst holds few
     beats, and a drifting wingbeat falls short there).
     """
-    gated = _gated(frames)
+    gated = frames.gated
     if gated is None:
         return None
     r, pairs = gated
