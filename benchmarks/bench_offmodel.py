@@ -129,9 +129,15 @@ def main():
     ids = parse_ids(args.scenes)
     with ProcessPoolExecutor(args.jobs) as pool:
         results = sorted(pool.map(run_scene, ids, [args.workdir] * len(ids)), key=lambda r: r[0])
+    print(f"{len(results)} scenes of benchmarks/offmodel\n")
+    report(results)
+    return 0
+
+
+def report(results):
+    """Print the tables of :func:`score` of ``results`` and every confidently wrong entry."""
     confusion, coverage, rotation_by_band, bad = score(results)
     kinds = ("drone", "bird", "none")
-    print(f"{len(results)} scenes of benchmarks/offmodel\n")
     print("| expected (rows), measured (columns) | " + " | ".join(kinds) + " |")
     print("|---|" + "---|" * len(kinds))
     for kind in kinds:
@@ -149,7 +155,6 @@ def main():
         shown = value if isinstance(value, str) or value is None else f"{value:.4g}"
         truth_shown = expected if isinstance(expected, str) or expected is None else f"{expected:.4g}"
         print(f"  s{sid:03d} {what}: {shown} for {truth_shown} ({description})")
-    return 0
 
 
 if __name__ == "__main__":

@@ -133,6 +133,9 @@ def attribute_overrides(func):
         kind = int if name in ("N", "NrChn") else float
         func = click.option(f"--{name.lower()}", name, type=kind, default=None,
                             help=f"Use this {meaning} instead of the file's {name!r} attribute.")(func)
+    func = click.option("--carrier-hz", "carrier_hz", type=float, default=None,
+                        help="Carrier frequency of an I/Q (CW) recording (Hz): a WAV holds none; replaces an HDF5 "
+                             "recording's 'fc'.")(func)
     frame_counter = click.option(
         "--frame-counter", type=click.Choice(["auto", "yes", "no"]), default="auto", show_default=True,
         help="Whether sample 0 of every chirp is a frame counter to drop.")
@@ -146,7 +149,7 @@ def attribute_overrides(func):
 def reader_options(options):
     """``frame_counter``, ``overrides`` and ``allow_external`` for :func:`mdpipe.io.open_capture` from the
     :func:`attribute_overrides` options."""
-    overrides = {name: options[name] for name in ATTRIBUTES if options[name] is not None}
+    overrides = {name: options[name] for name in (*ATTRIBUTES, "carrier_hz") if options[name] is not None}
     return {"frame_counter": {"auto": "auto", "yes": True, "no": False}[options["frame_counter"]],
             "overrides": overrides, "allow_external": options["allow_external"]}
 
@@ -278,6 +281,11 @@ def _format_truth(expected):
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
 def info(capture, as_json, **options):
     """Print the layout, parameters and derived quantities of CAPTURE (and its truth, if simulated)."""
+    from mdpipe.io.iq import is_iq_recording
+
+    if is_iq_recording(capture):
+        _iq_info(capture, as_json, options)
+        return
     with open_with_overrides(capture, options) as cap:
         p, n = cap.params, cap.n_chirps
         derived = {
@@ -312,6 +320,30 @@ def info(capture, as_json, **options):
             click.echo("  truth (simulated):")
             for line in lines:
                 click.echo(line)
+
+
+def _iq_info(path, as_json, options):
+    """``mdpipe info`` of an I/Q (CW) recording: its layout, parameters and what they allow, its samples not read."""
+    from mdpipe.io.iq import probe_iq
+
+    reader = reader_options(options)
+    params, n, layout = probe_iq(path, overrides=reader["overrides"], allow_external=reader["allow_external"])
+    derived = {"wavelength_m": params.wavelength_m, "doppler_span_hz": params.doppler_span_hz,
+               "velocity_span_mps": params.velocity_span_mps, "duration_s": params.duration_s(n), "n_samples": n,
+               "n_channels": params.n_channels}
+    if as_json:
+        from mdpipe.report.tables import finite_json
+
+        click.echo(json.dumps(finite_json({"file": str(path), "layout": layout.describe(), "params": params.__dict__,
+                                           "derived": derived, "truth": None, "warnings": []}), allow_nan=False))
+        return
+    click.echo(f"{path}")
+    click.echo(f"  layout: {layout.describe()}")
+    click.echo(f"  CW carrier {params.carrier_hz / 1e9:.6g} GHz, I/Q at {params.sample_rate_hz:.6g} Hz, "
+               f"FuSca {params.full_scale_v_per_lsb:.4g} V/count")
+    click.echo(f"  recording: {n} samples x {params.n_channels} RX = {derived['duration_s']:.4g} s (no range)")
+    click.echo(f"  Doppler span {params.doppler_span_hz:.6g} Hz (+-{params.doppler_span_hz / 2:.6g} Hz) = "
+               f"{params.velocity_span_mps:.4g} m/s at lambda {params.wavelength_m * 1e3:.4g} mm")
 
 
 def analysis_options(func):
@@ -416,7 +448,7 @@ def _run(jobs, *, on_outcome, debug, progress=None, **kwargs):
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object per target on stdout.")
 @analysis_options
 def process(captures, out_dir, as_json, no_figures, debug, **options):
-    """Detect targets in each CAPTURE (a file, or a folder searched for *.h5 and *.hdf5), measure their
+    """Detect targets in each CAPTURE (a file, or a folder searched for *.h5, *.hdf5 and *.wav), measure their
     micro-Doppler features, call drone / bird / none.
 
     Writes OUT/<stem>/ (for a folder, OUT/<path relative to it, less .h5>/) holding <stem>.features.csv,
@@ -440,12 +472,13 @@ def process(captures, out_dir, as_json, no_figures, debug, **options):
 
 
 def _summary_line(row):
-    if row["range_m"] is None:
+    if row.get("target") is None and row["range_m"] is None:  # the `none` row of a capture without detections
         return f"{row['file']}: none ({row['notes']})"
     from mdpipe.report.tables import to_resolution
 
     snr = f"{row['snr_db']:.1f} dB" if row.get("snr_db") is not None else f"n/a ({row.get('snr_db_status')})"
-    parts = [f"{row['file']}: {row['class']} at {row['range_m']:.1f} m, SNR {snr}"]
+    where = "(CW, no range)" if row["range_m"] is None else f"at {row['range_m']:.1f} m"
+    parts = [f"{row['file']}: {row['class']} {where}, SNR {snr}"]
     for key, label, unit, scale in (("chopping_freq_hz", "chopping", "Hz", 1), ("rotation_rate_hz", "rotor", "rev/s", 1),
                                     ("blade_length_m", "blade", "cm", 100), ("doppler_bw_hz", "BW", "Hz", 1),
                                     ("wingbeat_freq_hz", "wingbeat", "Hz", 1)):
@@ -547,7 +580,7 @@ def _gather(folder, *, figures, early=None):
                    "(pip install 'mdpipe[dask]').")
 @analysis_options
 def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
-    """Process every capture in INPUT (files, or folders searched recursively for *.h5 and *.hdf5) into OUT.
+    """Process every capture in INPUT (files, or folders searched recursively for *.h5, *.hdf5 and *.wav) into OUT.
 
     Each capture's outputs go to OUT/<its path relative to the folder given, less .h5>/, published whole; a capture
     is redone only when its size, mtime or content (SHA-256), mdpipe's version or the options changed

@@ -175,6 +175,81 @@ class RadarParams:
         return n_chirps * self.chirp_period_s
 
 
+# field -> (lowest, highest, unit, meaning) of an I/Q (CW) recording: a sound card's 8 kHz to an SDR's rates.
+IQ_LIMITS = {
+    "carrier_hz": (1e8, 3e11, "Hz", "carrier frequency: 100 MHz to 300 GHz"),
+    "sample_rate_hz": (100.0, 1e9, "Hz", "I/Q sample rate: 100 Hz to 1 GHz"),
+    "n_channels": (1, 256, "", "RX channels (I/Q pairs): 1 to 256"),
+    "full_scale_v_per_lsb": (1e-12, 1e3, "V/LSB", "volts per count: 1 pV to 1 kV"),
+}
+
+
+@dataclass(frozen=True)
+class IqParams:
+    """A continuous-wave (CW) radar's recording of complex baseband (I/Q) samples: its slow time, sampled at
+    ``sample_rate_hz``, with no range (``mdpipe.io.iq``).
+
+    Parameters
+    ----------
+    carrier_hz : float
+        Transmitted frequency, for Doppler.
+    sample_rate_hz : float
+        I/Q samples per second per channel: the slow-time rate (the pulse repetition frequency's part).
+    n_channels : int
+        RX channels, one I/Q pair each.
+    full_scale_v_per_lsb : float
+        Volts per count of integer samples.
+    """
+
+    carrier_hz: float
+    sample_rate_hz: float
+    n_channels: int = 1
+    full_scale_v_per_lsb: float = 1.0
+
+    def __post_init__(self):
+        for name, (low, high, unit, meaning) in IQ_LIMITS.items():
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float, np.integer, np.floating)) and np.isfinite(value)
+                    and low <= value <= high):
+                hint = ""
+                if name == "carrier_hz" and np.isfinite(value) and low <= value * 1e9 <= high:
+                    hint = f"; did you mean {value:g}e9?"
+                raise ParameterError(f"{name}={value!r} must be a finite number in [{low:g}, {high:g}]"
+                                     f"{' ' + unit if unit else ''} ({meaning}){hint}")
+        if int(self.n_channels) != self.n_channels:
+            raise ParameterError(f"n_channels={self.n_channels!r} must be an integer")
+        object.__setattr__(self, "n_channels", int(self.n_channels))
+
+    @property
+    def centre_hz(self):
+        """Carrier used for Doppler."""
+        return self.carrier_hz
+
+    @property
+    def wavelength_m(self):
+        """Wavelength of the carrier."""
+        return SPEED_OF_LIGHT_MPS / self.carrier_hz
+
+    @property
+    def prf_hz(self):
+        """The slow-time sample rate: the I/Q sample rate."""
+        return self.sample_rate_hz
+
+    @property
+    def doppler_span_hz(self):
+        """Unambiguous Doppler span of complex samples, the sample rate."""
+        return self.sample_rate_hz
+
+    @property
+    def velocity_span_mps(self):
+        """Unambiguous range-rate span, ``lambda fs / 2``."""
+        return float(-range_rate_from_doppler_mps(self.doppler_span_hz, wavelength_m=self.wavelength_m))
+
+    def duration_s(self, n_samples):
+        """Recording duration for ``n_samples`` I/Q samples."""
+        return n_samples / self.sample_rate_hz
+
+
 @dataclass(frozen=True)
 class ProcessParams:
     """Choices of ``mdpipe process``; the defaults are what a Radarlog user would start with.

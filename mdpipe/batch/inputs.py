@@ -1,7 +1,7 @@
 """Which captures a batch holds and where each one's outputs go.
 
 A file argument is published as ``OUT/<its stem>/``; a folder argument is searched recursively for
-``*.h5`` and ``*.hdf5`` files, each published under ``OUT/`` at its path relative to that folder, less the
+``*.h5``, ``*.hdf5`` and ``*.wav`` files (Radarlog captures, I/Q recordings), each published under ``OUT/`` at its path relative to that folder, less the
 suffix (``IN/day2/gull.h5`` -> ``OUT/day2/gull/``), so same-named captures of different subfolders stay
 apart. Two captures that would still share a folder (``gull.h5`` beside ``gull.hdf5``, or beside a subfolder
 ``gull/`` of captures) are refused before anything runs.
@@ -13,7 +13,7 @@ from pathlib import Path
 
 from mdpipe.errors import MdpipeError
 
-CAPTURE_SUFFIXES = (".h5", ".hdf5")
+CAPTURE_SUFFIXES = (".h5", ".hdf5", ".wav")
 GLOB_CHARACTERS = "*?["
 
 
@@ -55,7 +55,7 @@ def find_captures(inputs):
         if given.is_dir():
             found = [(path, path.relative_to(given).with_suffix("").as_posix()) for path in _in_folder(given)]
             if not found:
-                raise InputsError(f"{given}: no *.h5 or *.hdf5 capture in this folder or below it")
+                raise InputsError(f"{given}: no *.h5, *.hdf5 or *.wav capture in this folder or below it")
         else:
             found = [(given, given.stem)]
         for path, key in found:

@@ -87,8 +87,10 @@ class Outcome:
 
 
 def figures(result):
-    """The figures of an analysed capture: ``range``, and ``spectrogram`` and ``spectrum`` where it has targets."""
-    return ("range", "spectrogram", "spectrum") if result.analyses else ("range",)
+    """The figures of an analysed capture: ``range`` (not for an I/Q recording, which has no range), and
+    ``spectrogram`` and ``spectrum`` where it has targets."""
+    ranged = ("range",) if result.stats is not None else ()
+    return ranged + (("spectrogram", "spectrum") if result.analyses else ())
 
 
 def _draw_figure(result, job, figure, folder):

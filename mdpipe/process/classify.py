@@ -16,6 +16,8 @@ m/s. So one rule serves X band and 94 GHz:
   (``flapping_share``: glides between bursts too short for a wingbeat, or the turns of a slow stroke; rotors never
   stop); or, for a body that flies, within the same bounds, wings whose reach swings over the dwell as a stroke's
   does (``wing_stroke_swing``: too few beats for a wingbeat; a rotor's tips hold their speed);
+* none: a wing signature in an I/Q recording whose span cannot hold a rotor's tips (status ``undersampled``: a
+  drone's inner blades, all it shows of one, beat as wings do);
 * none: nothing moving above the noise, or neither signature (a branch swaying in the wind repeats
   too, but its micro-Doppler stays below ``MIN_WING_SPREAD_MPS`` and it does not fly).
 """
@@ -26,6 +28,8 @@ MIN_FLIGHT_SPEED_MPS = 2.0         # a body this fast flies: no branch (its body
 MIN_FLIGHT_DISTANCE_M = 1.0        # ... or one that travels this far in the dwell (a branch sways by tenths of a m)
 MIN_FLYING_WING_SPREAD_MPS = 0.5   # ... and its wings may spread this little (beating across the line of sight)
 ROTOR_EVIDENCE = ("ambiguous_period", "blade_conflict")  # chopping statuses of blade flashes found, rotation withheld
+UNDERSAMPLED = "undersampled"  # a wing reading of a CW echo whose span cannot hold a rotor's tips: no bird
+WING_KEYS = ("wingbeat_freq_hz", "flapping_share", "wing_stroke_swing")
 
 
 def classify(row, *, detected):
@@ -39,6 +43,9 @@ def classify(row, *, detected):
         return "drone", "blade flashes, their period ambiguous"
     if spread is not None and spread > DRONE_SPREAD_MPS:
         return "drone", f"micro-Doppler half-width {spread:.1f} m/s > {DRONE_SPREAD_MPS:g} m/s"
+    if any(row.get(f"{key}_status") == UNDERSAMPLED for key in WING_KEYS):
+        return "none", ("a micro-Doppler that beats as wings do, but in a span too narrow for a rotor's tips, where a "
+                        "drone's inner blades beat so too")
     if row.get("wingbeat_freq_hz") is not None:  # only measured with a wing-like half-width (features.wings)
         return "bird", f"wingbeat {row['wingbeat_freq_hz']:.2f} Hz, half-width {spread or 0:.1f} m/s"
     if row.get("flapping_share") is not None:  # likewise

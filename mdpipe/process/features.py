@@ -7,7 +7,7 @@ Each measurement is one function returning :class:`~mdpipe.process.validity.Meas
 """
 
 import functools
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -66,6 +66,8 @@ MAX_RAMP_DIVISOR = 6         # a power period not whole within the ramp: its hal
 POWER_COMB_TOLERANCE = 0.1   # an unaliased comb and its echo's power rate are a whole ratio apart within 10 %: rotors
                              # apart in rate (chopping at 123-134 Hz, the power repeated with the fastest, 133.1 Hz,
                              # the comb was their median, 125.2 Hz)
+MIN_ROTOR_TIP_MPS = 20.0     # multirotor blade tips move at 20-150 m/s (classify.py) ...
+HIDDEN_ELEVATION_DEG = 60.0  # ... and, the elevation not given, are taken as seen within this of edge-on
 MIN_BLADE_M = 0.005          # a blade this short, at the elevation given (its disc tilted ROTOR_TILT_DEG towards
                              # face-on), reaches the least r cos(beta) of any rotor: a comb narrower is not one
 MIN_WIDE_ORDERS = 8          # a comb found beyond the band measured holds this many orders a side at least
@@ -177,7 +179,7 @@ class RangeTrack:
         return float(np.sqrt(np.mean((self.range_m - line) ** 2)) / self.bin_m)
 
 
-def dealias_velocity(doppler_mps, *, span_mps, track):
+def dealias_velocity(doppler_mps, *, span_mps, track, ranged=True):
     """The body velocity among ``doppler_mps + k span_mps`` that the range track supports, or why none.
 
     The ``track`` is the range track as the Doppler straightens it (:meth:`RangeTrack.straightened`): where the
@@ -192,9 +194,20 @@ def dealias_velocity(doppler_mps, *, span_mps, track):
     uncertainty is below a quarter span the alias nearest the track's rate is the velocity (if it lies
     within twice that uncertainty of it: else the two disagree and nothing is reported); otherwise
     the Doppler stands only when every other alias the track allows is faster than ``MAX_SPEED_MPS``.
+
+    Without a track (``None``): a target held in one range bin (the Doppler stands), or, not ``ranged``, an echo
+    without range (a CW recording), where the Doppler stands only when every other alias is faster than
+    ``MAX_SPEED_MPS``.
     """
-    if track is None:
+    if track is None and ranged:
         return Measured(doppler_mps)
+    if track is None:
+        aliases = doppler_mps + span_mps * np.arange(-3, 4)
+        if np.count_nonzero(np.abs(aliases) <= MAX_SPEED_MPS) == 1 and abs(doppler_mps) <= MAX_SPEED_MPS:
+            return Measured(doppler_mps)
+        return withheld("velocity_ambiguous", f"body velocity not estimable: the Doppler gives it modulo "
+                        f"{span_mps:.3g} m/s and, without range, only a speed under {MAX_SPEED_MPS:g} m/s could tell "
+                        "which; more than one alias is")
     if track.doppler_bend_bins >= 1.0 and (bend := track.bend_bins()) > STRAIGHT_BINS:
         return withheld("velocity_ambiguous", f"body velocity not estimable: the range track does not follow the "
                         f"Doppler (straightened by it, it lies {bend:.2g} bins rms off a line)")
@@ -216,7 +229,7 @@ def dealias_velocity(doppler_mps, *, span_mps, track):
                     f"and the range track ({rate:.2g} +- {bound:.2g} m/s) does not tell which")
 
 
-def body_motion(signal, *, prf_hz, wavelength_m, track=None):
+def body_motion(signal, *, prf_hz, wavelength_m, track=None, ranged=True):
     """Body Doppler and velocity from the strongest line of each 32 ms frame, when a body line exists.
 
     Per frame the strongest line must stand ``BODY_LINE_DB`` above the strongest line more than two
@@ -272,7 +285,7 @@ def body_motion(signal, *, prf_hz, wavelength_m, track=None):
     rate_track = peaks_median(int(round(BODY_RATE_MEDIAN_S / spec.hop_s)))
     velocity = float(range_rate_from_doppler_mps(float(np.mean(np.interp(times_s, spec.t_s, rate_track))),
                                                  wavelength_m=wavelength_m))
-    unfolded = dealias_velocity(velocity, span_mps=wavelength_m * prf_hz / 2, track=track)
+    unfolded = dealias_velocity(velocity, span_mps=wavelength_m * prf_hz / 2, track=track, ranged=ranged)
     if kept and not _range_follows(unfolded.value, track):
         rate = track.range_rate_mps()[0]
         return BodyMotion(None, withheld("no_body_line", f"body velocity not estimable: no body line stands out of "
@@ -402,12 +415,53 @@ class DopplerBand:
     dense_half_width_hz: float = 0.0
 
 
-def doppler_band(signal, demodulated, *, prf_hz, wavelength_m, noise_power):
+def hidden_aliasing_note(*, prf_hz, wavelength_m, elevation_deg):
+    """Why a band that does not reach the span's ends may yet alias where the noise is read from the echo itself (a CW
+    recording, :mod:`mdpipe.process.cw`): a rotor's tips (``MIN_ROTOR_TIP_MPS``, seen at the elevation given, tilted
+    ``ROTOR_TILT_DEG`` towards face-on, else at ``HIDDEN_ELEVATION_DEG``) pass the span's radial speed
+    ``lambda PRF / 4``, so that they fold over it, and a floor they fill evenly reads as noise. None where the span
+    holds them."""
+    seen_deg = HIDDEN_ELEVATION_DEG if elevation_deg is None else min(abs(elevation_deg) + ROTOR_TILT_DEG, 90.0)
+    least_mps = MIN_ROTOR_TIP_MPS * np.cos(np.deg2rad(seen_deg))
+    span_mps = wavelength_m * prf_hz / 4
+    if span_mps >= least_mps:
+        return None
+    return (f"the span reaches +-{span_mps:.2g} m/s, under the {least_mps:.2g} m/s a rotor's tips reach, and the noise, "
+            "read from the echo (no range bins), may be their folded floor")
+
+
+def _undersampled(turn, why):
+    """A :class:`Rotation` read from an echo without range whose span cannot hold a rotor's tips (``why``:
+    :func:`hidden_aliasing_note`): its values kept, their ``ok`` made ``undersampled``. On the scenes of
+    ``make offmodel`` recorded by a CW radar at the scenes' PRFs (``make offmodel-cw``), such values were 2-11 times off
+    in 4 of 42 (flashes shorter than a sample, caught only where samples fall; folded lines that coincide; a
+    receiver's filter cutting the tips off), where those with the tips inside the span were all right."""
+    def caveat(measured, what):
+        if measured.value is None or measured.status != OK:
+            return measured
+        return Measured(measured.value, "undersampled", f"{what} not stood behind: {why}; from such an echo it may "
+                        "be a fraction or a multiple of the true one (record at over twice the tips' Doppler)")
+    return replace(turn, chopping=caveat(turn.chopping, "chopping frequency"), rate=caveat(turn.rate, "rotation rate"))
+
+
+def _undersampled_wings(measured, why):
+    """A wing reading (wingbeat, flapping share, stroke) of an echo without range whose span cannot hold a rotor's tips
+    (``why``: :func:`hidden_aliasing_note`), its ``ok`` made ``undersampled``: all such a span shows of a drone is its
+    blades' inner parts, which beat at the rotors' rate differences as wings do (three 94 GHz multirotors recorded
+    through a filter at 8.8-11.8 kHz read as birds beating 11.7-17.9 Hz, ``make offmodel-cw``)."""
+    if measured.value is None or measured.status != OK:
+        return measured
+    return Measured(measured.value, "undersampled", f"wings not told from rotors: {why}, and a drone's inner blades, "
+                    "all such a span shows of them, beat as wings do")
+
+
+def doppler_band(signal, demodulated, *, prf_hz, wavelength_m, noise_power, hidden_aliasing=None):
     """Occupied micro-Doppler band of the body-demodulated echo and whether it aliases.
 
     The half-width is taken about the band's centre, so a bird's own flight speed does not count when
     no body line was found to demodulate. Aliased (the half-width then only a lower bound, ``PRF / 2``):
-    the band fills the span or reaches both ends, or the brightest 64-chirp frames fill it.
+    the band fills the span or reaches both ends, or the brightest 64-chirp frames fill it, or, the noise read
+    from the echo, ``hidden_aliasing`` says why the band may alias unseen (:func:`hidden_aliasing_note`).
     """
     plain = doppler.power_spectrum(signal, prf_hz=prf_hz)
     compensated = doppler.power_spectrum(demodulated, prf_hz=prf_hz)
@@ -420,6 +474,8 @@ def doppler_band(signal, demodulated, *, prf_hz, wavelength_m, noise_power):
         if strobe.fills_span:
             reason = (f"the brightest frames fill the span 1/Tp = {prf_hz:.0f} Hz in {strobe.n_filled} of "
                       f"{strobe.n_frames}")
+        else:
+            reason = hidden_aliasing
     if reason is not None:
         return DopplerBand(plain, prf_hz / 2, True,
                            Measured(_speed_mps(prf_hz / 2, wavelength_m), "aliased",
@@ -1630,7 +1686,7 @@ def _columns(primary, measured, derived=None):
 
 
 def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=None, flash_views=None,
-                   ramp_share=1.0):
+                   ramp_share=1.0, ranged=True):
     """Measure every feature of one target's complex slow-time ``signal`` (channels combined).
 
     Parameters
@@ -1640,8 +1696,13 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     noise_power : float
         Noise power per chirp of ``signal`` (V^2).
     params : ProcessParams
+    ranged : bool
+        False for an echo without range (a CW recording): its body velocity is unfolded by speed alone
+        (:func:`dealias_velocity`), and its noise, read from the echo, may be the floor of blade tips folded over a
+        span too narrow for them (:func:`hidden_aliasing_note`).
     track : RangeTrack or None
-        The target's range over the dwell, which unfolds an aliased body Doppler.
+        The target's range over the dwell, which unfolds an aliased body Doppler; None: held in one range bin, or,
+        not ``ranged``, an echo without range (a CW recording: :mod:`mdpipe.process.cw`).
     flash_views : callable or None
         Returns the target's :class:`~mdpipe.process.ranging.FlashViews` (its slow time in parts of every ramp and
         at its range sides; :func:`mdpipe.process.pipeline.flash_views`), called only where a path reads the echo's
@@ -1654,8 +1715,11 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     moving = float(np.mean(np.abs(s) ** 2))
     snr = (moving - noise_power) / noise_power if noise_power > 0 else np.inf
     snr_db = Measured(float(10 * np.log10(snr))) if snr > 0 else withheld("no_signal", "no power above the noise")
-    body = body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m, track=track)
-    band = doppler_band(s, body.demodulated, prf_hz=prf_hz, wavelength_m=wavelength_m, noise_power=noise_power)
+    body = body_motion(s, prf_hz=prf_hz, wavelength_m=wavelength_m, track=track, ranged=ranged)
+    hidden = None if ranged else hidden_aliasing_note(prf_hz=prf_hz, wavelength_m=wavelength_m,
+                                                      elevation_deg=params.elevation_deg)
+    band = doppler_band(s, body.demodulated, prf_hz=prf_hz, wavelength_m=wavelength_m, noise_power=noise_power,
+                        hidden_aliasing=hidden)
     body_doppler_hz = 0.0 if body.track_hz is None else float(doppler.fold_hz(np.mean(body.track_hz), prf_hz=prf_hz))
     bandwidth, extent = paper_bandwidth(body.demodulated, prf_hz=prf_hz, threshold_db=params.threshold_db,
                                         body_doppler_hz=body_doppler_hz, aliased=band.aliased)
@@ -1671,6 +1735,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                     halfwidth_mps=band.halfwidth.value, body_found=body.track_hz is not None,
                     dense_half_width_hz=band.dense_half_width_hz, elevation_deg=params.elevation_deg, ramp=ramp,
                     sides=sides)
+    if hidden is not None:
+        turn = _undersampled(turn, hidden)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,
@@ -1706,6 +1772,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                                                          reach_mps=reach)
             if not beating:
                 beat = flaps = stroke = withheld("not_applicable", "")  # blade flashes exclude a bird
+    if hidden is not None:
+        beat, flaps, stroke = (_undersampled_wings(m, hidden) for m in (beat, flaps, stroke))
     rate_hz = turn.rate.value
     row = {
         **_columns("snr_db", snr_db),

@@ -119,3 +119,25 @@ def check_memory(reader, process):
         f"{reader.n_chirps} chirps), over the {process.max_memory_gb:g} GB budget; use "
         f"{' or '.join(hints)}, or raise --max-memory-gb")
 
+
+
+def iq_plan_bytes(n_samples, n_channels):
+    """Estimated peak bytes of analysing an I/Q recording (:mod:`mdpipe.process.cw`), by part: its samples as
+    complex64 volts, the channels combined (complex128), and one target's analysis (as a capture's, per sample)."""
+    samples = 8 * n_samples * n_channels
+    combined = 16 * n_samples
+    analysis = n_samples * ANALYSIS_BYTES_PER_CHIRP
+    return {"samples": samples, "combined": combined, "analysis": analysis, "base": BASE_BYTES,
+            "peak": samples + combined + analysis + BASE_BYTES}
+
+
+def check_iq_memory(path, n_samples, params, process):
+    """Refuse an I/Q recording whose plan (:func:`iq_plan_bytes`) exceeds ``process.max_memory_gb``, before its
+    samples are read."""
+    plan = iq_plan_bytes(n_samples, params.n_channels)
+    if plan["peak"] > process.max_memory_gb * GIB:
+        raise ParameterError(
+            f"{path}: analysing {n_samples:,} I/Q samples x {params.n_channels} RX ({params.duration_s(n_samples):.4g} s) "
+            f"would need about {plan['peak'] / GIB:.2f} GB, over the {process.max_memory_gb:g} GB budget; raise "
+            "--max-memory-gb or analyse a shorter recording")
+    return plan

@@ -1,44 +1,25 @@
 """One capture from file to feature rows: detect, follow, combine, analyse, classify."""
 
 import functools
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
+from mdpipe.io.iq import is_iq_recording
 from mdpipe.process import flashes, images, interference, memory, ranging, saturation, selection
 from mdpipe.process.classify import classify
+from mdpipe.process.cw import process_recording
 from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analyse_target
+from mdpipe.process.result import CaptureResult
 from mdpipe.process.filters import least_squares_line
 
 MIN_CHIRPS = 64
 TRACK_POINTS = 256  # range track points kept per target (for its range rate and extent)
 SAME_TRACK_BINS = 1.5  # two detections whose tracks are this close on average (range bins) are one target
 HUB_FIXED_BINS = 1.0   # a drone's hub between its range-Doppler images moving less over the dwell is held at one range
-
-
-@dataclass
-class CaptureResult:
-    """Rows (one per target, or one ``none`` row), the analyses behind them and the range statistics.
-
-    ``noise_power`` is the receiver noise per chirp and RX (V^2: the median moving power over the
-    gate), which is also that of each target's combined slow time (unit-norm RX weights);
-    ``process`` holds the :class:`mdpipe.params.ProcessParams` used; ``detection_test`` the
-    :class:`~mdpipe.process.selection.DetectionTest` applied (None with ``--range-m``).
-    """
-
-    path: str
-    params: object
-    layout: str
-    stats: ranging.GateStatistics
-    detections: list
-    analyses: list
-    rows: list
-    noise_power: float
-    process: object
-    detection_test: object = None
 
 
 def target_tracks(stats, detections, process, n_samples):
@@ -203,10 +184,18 @@ def no_detection_note(test, process):
 def process_capture(path, process, *, frame_counter="auto", overrides=None, allow_external=False):
     """Analyse one capture; returns a :class:`CaptureResult`.
 
+    An I/Q recording of a CW radar (:func:`mdpipe.io.iq.is_iq_recording`) is analysed by
+    :func:`mdpipe.process.cw.process_recording` instead.
+
     Raises :class:`mdpipe.errors.CaptureFormatError` for unreadable files and
     :class:`mdpipe.errors.ParameterError` when the capture is too short to analyse, needs more memory
     than ``process.max_memory_gb`` or holds no signal.
     """
+    if is_iq_recording(path):
+        if frame_counter is True:
+            raise ParameterError(f"{path}: an I/Q (CW) recording has no chirps and no frame counter; drop "
+                                 "--frame-counter yes")
+        return process_recording(path, process, overrides=overrides, allow_external=allow_external)
     with open_capture(path, frame_counter=frame_counter, overrides=overrides,
                       allow_external=allow_external) as reader:
         params = reader.params

@@ -29,6 +29,9 @@ STATUS_CODES = {
     "assumed_elevation": "depends on the rotor plane's elevation beta, which was not given: beta = 0 assumed",
     "blade_conflict": "the blade count given contradicts the echo (odd/even flashes or blade imbalance lines)",
     "no_rotation": "needs the rotation rate, which was not measured",
+    "undersampled": ("read from an I/Q (CW) recording whose sample rate cannot hold a rotor's blade tips: a rotation "
+                     "given may be a fraction or a multiple of the true one, and wings cannot be told from a drone's "
+                     "inner blades (read as `none`)"),
     "elevation": "the rotor plane is too close to face-on (|beta| > 80 deg): Eq. 6 divides by ~0",
     "few_harmonics": "the blade tips span too few Doppler bins (under 8 a side) of a frame holding one flash for the "
                      "flash edges to be sharp",

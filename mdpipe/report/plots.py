@@ -170,7 +170,8 @@ def _body_label(row):
 
 
 def _panel_title(result, row, middle, limits_text):
-    return (f"{_name(result.path)}, target {row['target']} at {row['range_m']:.4g} m: {row['class']}\n{middle}\n"
+    where = "CW, no range" if row["range_m"] is None else f"at {row['range_m']:.4g} m"
+    return (f"{_name(result.path)}, target {row['target']} {where}: {row['class']}\n{middle}\n"
             f"Doppler: {limits_text}")
 
 
@@ -355,7 +356,7 @@ def spectrum_figure(result, path, options=FigureParams()):
 
 def _label(row):
     aliased = " (aliased: at least)" if row["aliased"] in (True, "True") else ""
-    return f"{_name(row['file']).removesuffix('.h5')} #{int(row['target'])}{aliased}"
+    return f"{Path(_name(row['file'])).stem} #{int(row['target'])}{aliased}"
 
 
 def _plain(value, _position=None):

@@ -1,0 +1,80 @@
+"""mdpipe on I/Q recordings of CW radars it did not make: the scenes of benchmarks/offmodel (``make offmodel``)
+recorded by a CW radar at the scene's PRF (benchmarks/offmodel/cw.py), through an anti-alias filter (a sound card's
+or an SDR's: micro-Doppler beyond half the rate cut off) or sampled without one (folded, flashes shorter than a
+sample caught only where a sample falls), processed as a user would (the blade count and elevation given where the
+scene says so) and scored as ``make offmodel`` scores the FMCW captures of the same scenes (``bench_offmodel.score``,
+its tolerances and its rules of what is measurable).
+
+The SNR per I/Q sample is the FMCW capture's per slow-time sample, so that the two differ by what range adds: the
+noise read from empty range bins, a range track, the ramp's parts and range sides, the in-bin share. Rendering all
+380 scenes both ways takes about 15 min of one core; the recordings are kept in --workdir and reused.
+"""
+
+import argparse
+import os
+import sys
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent / "offmodel"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_offmodel  # noqa: E402
+import cw  # noqa: E402
+import scenes  # noqa: E402
+
+KINDS = ("filtered", "sampled")
+KEPT = ("class", "aliased", "snr_db", "notes", "rotor_rates_hz", *bench_offmodel.FEATURES,
+        *(f + "_status" for f in bench_offmodel.FEATURES))
+
+
+def record(sid, workdir, kind):
+    """Scene ``sid`` recorded by a CW radar (``kind``: filtered or sampled) into ``workdir`` (reused when there);
+    returns (path, scene, truth)."""
+    scene = scenes.scene(sid)
+    objects, truth = scenes.build(scene)
+    path = Path(workdir) / f"s{sid:03d}_{kind}.h5"
+    if not path.exists():
+        samples, fs, fc, noise = cw.iq(scene, objects, truth, scene["seed"], filtered=kind == "filtered")
+        partial = path.with_suffix(".part")
+        cw.write(partial, samples, fs, fc, noise)
+        os.replace(partial, path)
+    return path, scene, truth
+
+
+def run_scene(sid, workdir, kind="filtered"):
+    """Record scene ``sid`` (or reuse it) and process it: (sid, description, truth, row, classes), as
+    ``bench_offmodel.run_scene`` returns for the FMCW capture."""
+    from mdpipe.params import ProcessParams
+    from mdpipe.process.pipeline import process_capture
+
+    path, scene, truth = record(sid, workdir, kind)
+    given = {}
+    if scene["given_blades"]:
+        given["n_blades"] = truth["nbl"]
+    if scene["given_el"] and scene["kind"] == "drone":
+        given["elevation_deg"] = truth["beta"]
+    row = process_capture(str(path), ProcessParams(**given)).rows[0]
+    return sid, scenes.describe(scene, truth), truth, {k: row.get(k) for k in KEPT}, [row["class"]]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--workdir", required=True, help="where the recordings are written (and reused)")
+    parser.add_argument("--scenes", default=f"0-{bench_offmodel.N_SCENES - 1}", help="scene ids, e.g. 0-379")
+    parser.add_argument("--kinds", default=",".join(KINDS), help="filtered, sampled or both")
+    parser.add_argument("-j", "--jobs", type=int, default=2)
+    args = parser.parse_args()
+    Path(args.workdir).mkdir(parents=True, exist_ok=True)
+    ids = bench_offmodel.parse_ids(args.scenes)
+    for kind in args.kinds.split(","):
+        with ProcessPoolExecutor(args.jobs) as pool:
+            results = sorted(pool.map(run_scene, ids, [args.workdir] * len(ids), [kind] * len(ids)),
+                             key=lambda r: r[0])
+        print(f"## CW recordings, {kind}: {len(results)} scenes of benchmarks/offmodel\n")
+        bench_offmodel.report(results)
+        print()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
