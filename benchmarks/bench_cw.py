@@ -72,8 +72,18 @@ def main():
                              key=lambda r: r[0])
         print(f"## CW recordings, {kind}: {len(results)} scenes of benchmarks/offmodel\n")
         bench_offmodel.report(results)
-        print()
+        given, right = undersampled(results)
+        print(f"\nrotation given `undersampled` (the span too narrow for the tips): {given}, of them within "
+              f"{bench_offmodel.TOLERANCE['rotation_rate_hz']:.0%}: {right}\n")
     return 0
+
+
+def undersampled(results):
+    """How many rotation rates ``results`` give as `undersampled`, and how many of those lie within the tolerance."""
+    rows = [(row, truth) for _, _, truth, row, _ in results
+            if row["rotation_rate_hz_status"] == "undersampled" and row["rotation_rate_hz"] is not None]
+    right = sum(not bench_offmodel.wrong("rotation_rate_hz", row["rotation_rate_hz"], truth) for row, truth in rows)
+    return len(rows), right
 
 
 if __name__ == "__main__":

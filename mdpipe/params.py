@@ -19,6 +19,20 @@ def require_positive(**values):
             raise ParameterError(f"{name}={value!r} must be a finite number > 0")
 
 
+def check_limits(params, limits, *, giga=()):
+    """Raise :class:`ParameterError` naming the first field of ``params`` outside its ``limits`` (field -> (lowest,
+    highest, unit, meaning)) or not a finite number; for a field in ``giga`` given in GHz, the hint says so."""
+    for name, (low, high, unit, meaning) in limits.items():
+        value = getattr(params, name)
+        if not (isinstance(value, (int, float, np.integer, np.floating)) and np.isfinite(value)
+                and low <= value <= high):
+            hint = ""
+            if name in giga and np.isfinite(value) and low <= value * 1e9 <= high:
+                hint = f"; did you mean {value:g}e9?"
+            raise ParameterError(f"{name}={value!r} must be a finite number in [{low:g}, {high:g}]"
+                                 f"{' ' + unit if unit else ''} ({meaning}){hint}")
+
+
 # field -> (lowest, highest, unit, meaning): the values a radar engineer would accept, VHF to 300 GHz.
 # N >= 8 keeps a range FFT meaningful; 256 RX covers cascaded MIMO front ends (Radarlog: 16).
 RADAR_LIMITS = {
@@ -75,15 +89,7 @@ class RadarParams:
     rx_positions_m: tuple = field(default=())
 
     def __post_init__(self):
-        for name, (low, high, unit, meaning) in RADAR_LIMITS.items():
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float, np.integer, np.floating)) and np.isfinite(value)
-                    and low <= value <= high):
-                hint = ""
-                if name in ("f_start_hz", "f_stop_hz") and np.isfinite(value) and low <= value * 1e9 <= high:
-                    hint = f"; did you mean {value:g}e9?"
-                raise ParameterError(f"{name}={value!r} must be a finite number in [{low:g}, {high:g}]"
-                                     f"{' ' + unit if unit else ''} ({meaning}){hint}")
+        check_limits(self, RADAR_LIMITS, giga=("f_start_hz", "f_stop_hz"))
         for name in ("n_samples", "n_channels"):
             if int(getattr(self, name)) != getattr(self, name):
                 raise ParameterError(f"{name}={getattr(self, name)!r} must be an integer")
@@ -175,7 +181,7 @@ class RadarParams:
         return n_chirps * self.chirp_period_s
 
 
-# field -> (lowest, highest, unit, meaning) of an I/Q (CW) recording: a sound card's 8 kHz to an SDR's rates.
+# field -> (lowest, highest, unit, meaning) of an I/Q (CW) recording: a slow radar module's rates to an SDR's.
 IQ_LIMITS = {
     "carrier_hz": (1e8, 3e11, "Hz", "carrier frequency: 100 MHz to 300 GHz"),
     "sample_rate_hz": (100.0, 1e9, "Hz", "I/Q sample rate: 100 Hz to 1 GHz"),
@@ -207,15 +213,7 @@ class IqParams:
     full_scale_v_per_lsb: float = 1.0
 
     def __post_init__(self):
-        for name, (low, high, unit, meaning) in IQ_LIMITS.items():
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float, np.integer, np.floating)) and np.isfinite(value)
-                    and low <= value <= high):
-                hint = ""
-                if name == "carrier_hz" and np.isfinite(value) and low <= value * 1e9 <= high:
-                    hint = f"; did you mean {value:g}e9?"
-                raise ParameterError(f"{name}={value!r} must be a finite number in [{low:g}, {high:g}]"
-                                     f"{' ' + unit if unit else ''} ({meaning}){hint}")
+        check_limits(self, IQ_LIMITS, giga=("carrier_hz",))
         if int(self.n_channels) != self.n_channels:
             raise ParameterError(f"n_channels={self.n_channels!r} must be an integer")
         object.__setattr__(self, "n_channels", int(self.n_channels))

@@ -220,6 +220,23 @@ def test_tips_folded_into_a_floor_that_reads_as_noise_leave_no_comb_unconfirmed(
     assert row["chopping_freq_hz_status"] != "ok"
 
 
+def test_a_rotation_read_where_the_span_cannot_hold_the_tips_is_not_stood_behind(tmp_path):
+    """Four equal 3-blade rotors at 94 GHz sampled at 12.3 kHz without a filter: the span holds +-9.8 m/s, their tips
+    reach 15 m/s at the least; read at half the chopping frequency, given as `undersampled`, not `ok`."""
+    _, description, truth, row, _ = run_scene(17, tmp_path, "sampled")
+    assert row["class"] == "drone", description
+    assert row["chopping_freq_hz"] == pytest.approx(truth["chop"] / 2, rel=0.01)
+    assert row["chopping_freq_hz_status"] == "undersampled" and row["rotation_rate_hz_status"] == "undersampled"
+
+
+def test_wings_are_not_told_from_rotors_a_span_cannot_show(tmp_path):
+    """Four 94 GHz rotors 1-4 % apart recorded through a filter at 11.8 kHz: all the span shows of them is their
+    blades' inner parts, beating at 11.7 Hz: `none`, that beat `undersampled` (a bird, `ok`, before)."""
+    _, description, truth, row, _ = run_scene(175, tmp_path, "filtered")
+    assert row["class"] == "none", description
+    assert row["wingbeat_freq_hz_status"] == "undersampled"
+
+
 # ------------------------------------------------------------------ command line
 
 def test_process_a_wav_from_the_command_line(tmp_path):

@@ -24,14 +24,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io.iq import read_iq
 from mdpipe.process import memory, selection
 from mdpipe.process.classify import classify
 from mdpipe.process.doppler import periodic_hann
-from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, analyse_target
-from mdpipe.process.result import CaptureResult
+from mdpipe.process.features import analyse_target
+from mdpipe.process.result import CaptureResult, base_row
 
 MIN_SAMPLES = 64            # as a capture's chirps (pipeline.MIN_CHIRPS)
 NOISE_FRAME_S = 1e-3        # frames short against a rotor's flash period, so that some hold no flash
@@ -122,19 +121,6 @@ def combined(samples):
     return samples.astype(np.complex128) @ weight[0], float(gain[0])
 
 
-def _row(path, recording, process, noise):
-    params = recording.params
-    return {
-        "file": str(path), "target": None, "class": "none", "range_m": None, "range_bin": None,
-        "range_min_m": None, "range_max_m": None, "rx_gain_db": None, **dict.fromkeys(FEATURE_KEYS),
-        **dict.fromkeys(STATUS_KEYS, "no_target"),
-        "elevation_deg": process.elevation_deg, "n_blades": process.n_blades,
-        "n_blades_source": None if process.n_blades is None else "given", "threshold_db": process.threshold_db,
-        "wavelength_m": params.wavelength_m, "prf_hz": params.prf_hz, "dwell_s": params.duration_s(recording.n_samples),
-        "clipped_share": recording.clipped_fraction, "interference_share": None, "mdpipe_version": __version__,
-    }
-
-
 def _no_detection_note(test):
     def db(x):
         return 10 * np.log10(max(x, np.finfo(float).tiny))
@@ -170,7 +156,8 @@ def process_recording(path, process, *, overrides=None, allow_external=False):
     test = selection.cell_test(power, looks=blocks, noise_cell=noise * np.sum(window ** 2) / np.sum(window) ** 2,
                                noise_error=estimate.relative_error,
                                false_alarm_probability=process.false_alarm_probability)
-    row = _row(path, recording, process, noise)
+    row = base_row(path, process, params, n_samples=recording.n_samples, clipped=recording.clipped_fraction,
+                   interference=None)
     notes = list(recording.warnings)
     layout = recording.layout.describe()
     if test.score.max() < 1:

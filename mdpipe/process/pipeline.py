@@ -5,15 +5,14 @@ from dataclasses import replace
 
 import numpy as np
 
-from mdpipe import __version__
 from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
 from mdpipe.io.iq import is_iq_recording
 from mdpipe.process import flashes, images, interference, memory, ranging, saturation, selection
 from mdpipe.process.classify import classify
 from mdpipe.process.cw import process_recording
-from mdpipe.process.features import FEATURE_KEYS, STATUS_KEYS, RangeTrack, analyse_target
-from mdpipe.process.result import CaptureResult
+from mdpipe.process.features import RangeTrack, analyse_target
+from mdpipe.process.result import CaptureResult, base_row
 from mdpipe.process.filters import least_squares_line
 
 MIN_CHIRPS = 64
@@ -160,15 +159,7 @@ def clipped_share(reader, stats):
 
 
 def _base_row(path, stats, process, params, clipped, common):
-    return {
-        "file": str(path), "target": None, "class": "none", "range_m": None, "range_bin": None,
-        "range_min_m": None, "range_max_m": None, "rx_gain_db": None, **dict.fromkeys(FEATURE_KEYS),
-        **dict.fromkeys(STATUS_KEYS, "no_target"),
-        "elevation_deg": process.elevation_deg, "n_blades": process.n_blades,
-        "n_blades_source": None if process.n_blades is None else "given", "threshold_db": process.threshold_db,
-        "wavelength_m": params.wavelength_m, "prf_hz": params.prf_hz, "dwell_s": params.duration_s(stats.n_chirps),
-        "clipped_share": clipped, "interference_share": common.spike_share, "mdpipe_version": __version__,
-    }
+    return base_row(path, process, params, n_samples=stats.n_chirps, clipped=clipped, interference=common.spike_share)
 
 
 def no_detection_note(test, process):
