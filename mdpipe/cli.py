@@ -131,8 +131,9 @@ def attribute_overrides(func):
     """Options that supply or replace a capture's chirp attributes (``--tp 64e-6`` ...)."""
     for name, (_field, meaning, _example) in reversed(ATTRIBUTES.items()):
         kind = int if name in ("N", "NrChn") else float
+        also = " (of an I/Q recording: its I/Q sample rate)" if name == "fs" else ""
         func = click.option(f"--{name.lower()}", name, type=kind, default=None,
-                            help=f"Use this {meaning} instead of the file's {name!r} attribute.")(func)
+                            help=f"Use this {meaning} instead of the file's {name!r} attribute{also}.")(func)
     func = click.option("--carrier-hz", "carrier_hz", type=float, default=None,
                         help="Carrier frequency of an I/Q (CW) recording (Hz): a WAV holds none; replaces an HDF5 "
                              "recording's 'fc'.")(func)
@@ -399,7 +400,7 @@ def _jobs(inputs, out_dir, options, *, figures):
     try:
         params = ProcessParams(**{k: v for k, v in options.items() if k in ProcessParams.__dataclass_fields__})
         figure_params = FigureParams.from_text(options["doppler_limits"]) if figures else None
-        captures = find_captures(inputs)
+        captures = find_captures(inputs, wav=options.get("carrier_hz") is not None)
     except MdpipeError as exc:
         raise UsageError(str(exc)) from None
     reader = reader_options(options)
@@ -448,7 +449,7 @@ def _run(jobs, *, on_outcome, debug, progress=None, **kwargs):
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object per target on stdout.")
 @analysis_options
 def process(captures, out_dir, as_json, no_figures, debug, **options):
-    """Detect targets in each CAPTURE (a file, or a folder searched for *.h5, *.hdf5 and *.wav), measure their
+    """Detect targets in each CAPTURE (a file, or a folder searched for *.h5 and *.hdf5, and *.wav with --carrier-hz), measure their
     micro-Doppler features, call drone / bird / none.
 
     Writes OUT/<stem>/ (for a folder, OUT/<path relative to it, less .h5>/) holding <stem>.features.csv,
@@ -580,7 +581,7 @@ def _gather(folder, *, figures, early=None):
                    "(pip install 'mdpipe[dask]').")
 @analysis_options
 def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
-    """Process every capture in INPUT (files, or folders searched recursively for *.h5, *.hdf5 and *.wav) into OUT.
+    """Process every capture in INPUT (files, or folders searched recursively for *.h5 and *.hdf5, and *.wav with --carrier-hz) into OUT.
 
     Each capture's outputs go to OUT/<its path relative to the folder given, less .h5>/, published whole; a capture
     is redone only when its size, mtime or content (SHA-256), mdpipe's version or the options changed

@@ -64,7 +64,7 @@ def test_unmatched_pattern_is_one_line_and_writes_nothing(tmp_path, monkeypatch)
 def test_folder_without_captures_is_a_usage_error(tmp_path):
     result = invoke("batch", tmp_path, "--out", tmp_path / "out")
     assert result.exit_code == 1
-    assert result.output == f"Error: {tmp_path}: no *.h5, *.hdf5 or *.wav capture in this folder or below it\n"
+    assert result.output == f"Error: {tmp_path}: no *.h5 or *.hdf5 capture in this folder or below it\n"
 
 
 def test_two_inputs_for_one_output_folder_are_refused(tmp_path):

@@ -1,7 +1,8 @@
 """Which captures a batch holds and where each one's outputs go.
 
 A file argument is published as ``OUT/<its stem>/``; a folder argument is searched recursively for
-``*.h5``, ``*.hdf5`` and ``*.wav`` files (Radarlog captures, I/Q recordings), each published under ``OUT/`` at its path relative to that folder, less the
+``*.h5`` and ``*.hdf5`` files (Radarlog captures, I/Q recordings), and for I/Q recordings of a
+given carrier (``--carrier-hz``) ``*.wav`` files too, each published under ``OUT/`` at its path relative to that folder, less the
 suffix (``IN/day2/gull.h5`` -> ``OUT/day2/gull/``), so same-named captures of different subfolders stay
 apart. Two captures that would still share a folder (``gull.h5`` beside ``gull.hdf5``, or beside a subfolder
 ``gull/`` of captures) are refused before anything runs.
@@ -13,7 +14,8 @@ from pathlib import Path
 
 from mdpipe.errors import MdpipeError
 
-CAPTURE_SUFFIXES = (".h5", ".hdf5", ".wav")
+CAPTURE_SUFFIXES = (".h5", ".hdf5")
+WAV_SUFFIXES = (".wav",)  # searched for where a carrier is given: a folder of captures may hold other sounds
 GLOB_CHARACTERS = "*?["
 
 
@@ -29,16 +31,17 @@ class Capture:
     key: str
 
 
-def _in_folder(folder):
+def _in_folder(folder, suffixes):
     found = []
     for root, dirs, files in os.walk(folder):
         dirs.sort()
-        found.extend(Path(root) / name for name in sorted(files) if name.lower().endswith(CAPTURE_SUFFIXES))
+        found.extend(Path(root) / name for name in sorted(files) if name.lower().endswith(suffixes))
     return found
 
 
-def find_captures(inputs):
-    """The captures named by ``inputs`` (files or folders), in order, each once.
+def find_captures(inputs, *, wav=False):
+    """The captures named by ``inputs`` (files or folders), in order, each once; ``wav``: folders are searched for
+    ``*.wav`` I/Q recordings too.
 
     Raises
     ------
@@ -53,9 +56,12 @@ def find_captures(inputs):
                     else "")
             raise InputsError(f"{given}: no such file or folder{hint}")
         if given.is_dir():
-            found = [(path, path.relative_to(given).with_suffix("").as_posix()) for path in _in_folder(given)]
+            suffixes = CAPTURE_SUFFIXES + (WAV_SUFFIXES if wav else ())
+            found = [(path, path.relative_to(given).with_suffix("").as_posix()) for path in _in_folder(given, suffixes)]
             if not found:
-                raise InputsError(f"{given}: no *.h5, *.hdf5 or *.wav capture in this folder or below it")
+                names = [f"*{suffix}" for suffix in suffixes]
+                raise InputsError(f"{given}: no {', '.join(names[:-1])} or {names[-1]} capture in this folder or "
+                                  "below it")
         else:
             found = [(given, given.stem)]
         for path, key in found:

@@ -38,6 +38,8 @@ IQ_OVERRIDES = {
 }
 HDF5_ATTRIBUTES = {"fc": "carrier_hz", "fs": "sample_rate_hz"}
 INTEGER_KINDS = "iu"
+PROBE_FILE_BYTES = 2**31  # a WAV that cannot be mapped, read whole to be described (``mdpipe info``)
+CLIPPED_COUNTS = 256  # within this of an integer type's extremes counts as full scale (24-bit PCM fills int32's top)
 
 
 def _hdf5_signature(path):
@@ -110,7 +112,10 @@ def _parameters(found, overrides, path, *, how_to):
     for name, (field, meaning, example) in IQ_OVERRIDES.items():
         if field not in values:
             raise CaptureFormatError(f"{path}: the {meaning} is not in the file ({how_to}); supply it with {example}")
-    return IqParams(**values)
+    try:
+        return IqParams(**values)
+    except ParameterError as exc:
+        raise ParameterError(f"{path}: {exc}") from None
 
 
 def _complex(data, arrangement_axis_last):
@@ -126,36 +131,44 @@ def _complex(data, arrangement_axis_last):
 
 
 def _full_scale_share(data):
-    """Share of integer samples at their type's extremes (clipped); None for float samples."""
+    """Share of integer samples at their type's extremes (clipped): for 32-bit samples within ``CLIPPED_COUNTS`` of
+    them, as 24-bit PCM fills the top three bytes; None for float samples."""
     if data.dtype.kind not in INTEGER_KINDS:
         return None
     info = np.iinfo(data.dtype)
-    return float(np.count_nonzero((data == info.max) | (data == info.min)) / max(data.size, 1))
+    margin = CLIPPED_COUNTS - 1 if data.dtype.itemsize >= 4 else 0
+    return float(np.count_nonzero((data >= info.max - margin) | (data <= info.min + margin)) / max(data.size, 1))
 
 
 def _read_wav(path, overrides, check, max_file_bytes):
     from scipy.io import wavfile
 
     size = os.path.getsize(path)
-    with _warnings.catch_warnings():
-        _warnings.simplefilter("ignore")  # unknown chunks: read past, as players do
+    with _warnings.catch_warnings(record=True) as caught:
+        _warnings.simplefilter("always")  # unknown chunks are read past, as players do; a short file is refused below
         try:
             try:
                 rate, data = wavfile.read(path, mmap=True)  # mapped: nothing allocated that the file does not hold
             except ValueError as exc:
-                if "mmap" not in str(exc):
+                if "greater than file size" in str(exc):
+                    raise CaptureFormatError(f"{path}: the WAV header declares more samples than the file holds; "
+                                             "the file is truncated or forged") from None
+                if "container" not in str(exc):
                     raise
-                if size > max_file_bytes:  # 24-bit PCM cannot be mapped: read whole, bounded by the file's size
-                    raise CaptureFormatError(f"{path}: a {size:,}-byte WAV of 24-bit samples is read whole, over the "
-                                             f"{max_file_bytes:,} bytes --max-memory-gb allows; raise it") from None
+                if size > max_file_bytes:  # 3-byte samples cannot be mapped: read whole, bounded by the file's size
+                    raise CaptureFormatError(f"{path}: a {size:,}-byte WAV of samples that cannot be mapped (3 bytes "
+                                             f"each) is read whole, over the {max_file_bytes:,} bytes allowed; raise "
+                                             "--max-memory-gb") from None
                 with open(path, "rb") as handle:
                     rate, data = wavfile.read(io.BytesIO(handle.read()))
+                data = np.asarray(data)  # (read whole: counted below as stored bytes)
         except CaptureFormatError:
             raise
         except Exception as exc:  # a header scipy cannot parse
             raise CaptureFormatError(f"{path}: not a readable WAV file ({' '.join(str(exc).split())})") from None
-    if data.nbytes > size:
-        raise CaptureFormatError(f"{path}: declares {data.nbytes:,} bytes of samples in a {size:,}-byte file")
+    if any("EOF prematurely" in str(warning.message) for warning in caught):
+        raise CaptureFormatError(f"{path}: the WAV header declares more samples than the file holds; the file is "
+                                 "truncated or forged")
     if data.ndim != 2 or data.shape[1] % 2:
         channels = 1 if data.ndim == 1 else data.shape[1]
         raise CaptureFormatError(f"{path}: {channels} audio channel(s); an I/Q recording holds an even number, I "
@@ -164,8 +177,11 @@ def _read_wav(path, overrides, check, max_file_bytes):
         raise CaptureFormatError(f"{path}: {data.shape[1] // 2} I/Q pairs; at most {IQ_LIMITS['n_channels'][1]} are read")
     params = _parameters({"sample_rate_hz": float(rate), "n_channels": data.shape[1] // 2}, overrides, path,
                          how_to="a WAV header holds the sample rate only")
+    if data.shape[0] == 0:
+        raise CaptureFormatError(f"{path}: the WAV holds no samples")
     if check is not None:
-        check(data.shape[0], params)  # before the mapped samples are read
+        check(data.shape[0], params, 0 if isinstance(data, np.memmap) else 2 * data.dtype.itemsize)  # before
+        # the mapped samples are read; samples read whole are held beside their conversion
     layout = IqLayout("WAV", str(data.dtype), tuple(data.shape), f"{params.n_channels} RX, I then Q of each")
     return params, data, False, layout
 
@@ -197,13 +213,15 @@ def _read_hdf5(path, overrides, allow_external, check, read=True):
         if not 1 <= channels <= IQ_LIMITS["n_channels"][1]:
             raise CaptureFormatError(f"{path}: '/{IQ_DATASET}' holds {channels} channels; 1 to "
                                      f"{IQ_LIMITS['n_channels'][1]} are read")
+        if ds.shape[0] == 0:
+            raise CaptureFormatError(f"{path}: '/{IQ_DATASET}' holds no samples")
         _check_storage(ds, IQ_DATASET, path, allow_external=allow_external)
         params = _parameters({**found, "n_channels": channels}, overrides, path,
                              how_to=f"root attributes {', '.join(HDF5_ATTRIBUTES)}")
         arrangement = f"{channels} RX" + ("" if kind == "c" else ", I and Q on the last axis")
         layout = IqLayout("HDF5 /IQ", str(ds.dtype), tuple(ds.shape), arrangement)
         if check is not None:
-            check(ds.shape[0], params)
+            check(ds.shape[0], params, ds.dtype.itemsize * (1 if kind == "c" else 2))
         data = ds[()] if read else ds.shape
     return params, data, (None if kind == "c" else True), layout
 
@@ -226,15 +244,16 @@ def _open(path, overrides, allow_external, check, max_file_bytes, read=True):
 def probe_iq(path, *, overrides=None, allow_external=False):
     """An I/Q recording's :class:`~mdpipe.params.IqParams`, its samples per channel and its :class:`IqLayout`, the
     samples not read (``mdpipe info``)."""
-    _, (params, data, _, layout) = _open(path, overrides, allow_external, None, 0, read=False)
+    _, (params, data, _, layout) = _open(path, overrides, allow_external, None, PROBE_FILE_BYTES, read=False)
     return params, data.shape[0] if hasattr(data, "ndim") else data[0], layout
 
 
 def read_iq(path, *, overrides=None, allow_external=False, check=None, max_file_bytes=2**31):
     """Read an I/Q recording whole; returns an :class:`IqRecording`.
 
-    ``check(n_samples, params)``, when given, is called once the recording's size and parameters are known and
-    before its samples are read (a memory plan that refuses what it cannot hold); ``max_file_bytes`` bounds a WAV
+    ``check(n_samples, params, stored_bytes_per_sample)``, when given, is called once the recording's size and
+    parameters are known and before its samples are read (bytes per sample and channel held as read: 0 for a mapped
+    WAV) (a memory plan that refuses what it cannot hold); ``max_file_bytes`` bounds a WAV
     that cannot be mapped and is read whole. Raises :class:`CaptureFormatError` (or :class:`ParameterError` for a
     value out of range) with one line naming the problem and the fix.
     """

@@ -333,9 +333,9 @@ class RadarlogReader:
 
     def _open(self, frame_counter, overrides, allow_external):
         h5, path = self._h5, self.path
-        if "carrier_hz" in overrides:
-            raise ParameterError(f"{path}: --carrier-hz applies to I/Q (CW) recordings; a Radarlog capture's carrier "
-                                 "is the centre of its chirp (--fstrt, --fstop)")
+        if overrides.pop("carrier_hz", None) is not None:  # (a batch may mix captures and I/Q recordings)
+            self.warnings.append("--carrier-hz applies to I/Q (CW) recordings, not to this capture, whose carrier is "
+                                 "its chirp's centre (--fstrt, --fstop)")
         prefix, values = _read_attributes(h5.attrs, path, overrides)
         kind, datasets = _sample_datasets(h5, path, allow_external=allow_external)
         self._datasets = datasets

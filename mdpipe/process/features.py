@@ -31,6 +31,7 @@ BODY_KEPT_SHARE = 0.75       # ... this share of the frames (a bird's wings stan
 BODY_KEPT_TRACK_BINS = 0.25  # ... and the range track moves as it says to this share of a range bin over the dwell
 BODY_FRAME_S = 0.032
 BODY_STEADY_SHARE = 0.5      # frames whose strongest line lies on the smoothed body track
+MAX_UNRANGED_SPEED_MPS = 50.0  # without a range track (CW), the one alias of the body Doppler under this speed
 MAX_SPEED_MPS = 25.0         # birds and small drones fly slower: a faster alias of the body Doppler is not taken
 BODY_TRACK_FRAMES = 9        # running median of the body track (rotor lines win single frames)
 BODY_RATE_MEDIAN_S = 0.2     # ... and, for the mean range rate, over this time: a rotor line winning up to 0.1 s
@@ -197,14 +198,19 @@ def dealias_velocity(doppler_mps, *, span_mps, track, ranged=True):
 
     Without a track (``None``): a target held in one range bin (the Doppler stands), or, not ``ranged``, an echo
     without range (a CW recording), where the Doppler stands only when every other alias is faster than
-    ``MAX_SPEED_MPS``.
+    ``MAX_UNRANGED_SPEED_MPS`` (twice the speed the track's test allows: no track bounds it; a target receding at 30
+    m/s sampled at 8 kHz at 24 GHz read -19.7 m/s under 25 m/s), and is given as ``assumed_speed`` where that holds
+    for ``MAX_SPEED_MPS`` only.
     """
     if track is None and ranged:
         return Measured(doppler_mps)
     if track is None:
         aliases = doppler_mps + span_mps * np.arange(-3, 4)
-        if np.count_nonzero(np.abs(aliases) <= MAX_SPEED_MPS) == 1 and abs(doppler_mps) <= MAX_SPEED_MPS:
-            return Measured(doppler_mps)
+        for ceiling_mps, status in ((MAX_UNRANGED_SPEED_MPS, OK), (MAX_SPEED_MPS, "assumed_speed")):
+            if np.count_nonzero(np.abs(aliases) <= ceiling_mps) == 1 and abs(doppler_mps) <= ceiling_mps:
+                note = "" if status == OK else (f"body velocity assumes a speed under {MAX_SPEED_MPS:g} m/s: the "
+                                                f"Doppler gives it modulo {span_mps:.3g} m/s and no range tells which")
+                return Measured(doppler_mps, status, note)
         return withheld("velocity_ambiguous", f"body velocity not estimable: the Doppler gives it modulo "
                         f"{span_mps:.3g} m/s and, without range, only a speed under {MAX_SPEED_MPS:g} m/s could tell "
                         "which; more than one alias is")
@@ -432,27 +438,31 @@ def hidden_aliasing_note(*, prf_hz, wavelength_m, elevation_deg):
 
 def _undersampled(turn, why):
     """A :class:`Rotation` read from an echo without range whose span cannot hold a rotor's tips (``why``:
-    :func:`hidden_aliasing_note`): its values kept, their ``ok`` made ``undersampled``. On the scenes of
-    ``make offmodel`` recorded by a CW radar at the scenes' PRFs (``make offmodel-cw``), such values were 2-11 times off
-    in 4 of 42 (flashes shorter than a sample, caught only where samples fall; folded lines that coincide; a
-    receiver's filter cutting the tips off), where those with the tips inside the span were all right."""
+    :func:`hidden_aliasing_note`): its values kept, their status (``ok``, or a caveat such as ``assumed_blades``,
+    which the note keeps) made ``undersampled``. On the scenes of ``make offmodel`` recorded by a CW radar at the
+    scenes' PRFs (``make offmodel-cw``), such rates were at half or three times the truth in 4 of 32 recorded through
+    a filter and 3 of 43 sampled without one (flashes shorter than a sample, caught only where samples fall; folded
+    lines that coincide; a receiver's filter cutting the tips off), where those with the tips inside the span were
+    all right."""
     def caveat(measured, what):
-        if measured.value is None or measured.status != OK:
+        if measured.value is None:
             return measured
-        return Measured(measured.value, "undersampled", f"{what} not stood behind: {why}; from such an echo it may "
-                        "be a fraction or a multiple of the true one (record at over twice the tips' Doppler)")
+        note = (f"{what} not stood behind: {why}; from such an echo it may be a fraction or a multiple of the true one "
+                "(record at over twice the tips' Doppler)")
+        return Measured(measured.value, "undersampled", "; ".join(n for n in (measured.note, note) if n))
     return replace(turn, chopping=caveat(turn.chopping, "chopping frequency"), rate=caveat(turn.rate, "rotation rate"))
 
 
 def _undersampled_wings(measured, why):
     """A wing reading (wingbeat, flapping share, stroke) of an echo without range whose span cannot hold a rotor's tips
-    (``why``: :func:`hidden_aliasing_note`), its ``ok`` made ``undersampled``: all such a span shows of a drone is its
+    (``why``: :func:`hidden_aliasing_note`), its status made ``undersampled``: all such a span shows of a drone is its
     blades' inner parts, which beat at the rotors' rate differences as wings do (three 94 GHz multirotors recorded
     through a filter at 8.8-11.8 kHz read as birds beating 11.7-17.9 Hz, ``make offmodel-cw``)."""
-    if measured.value is None or measured.status != OK:
+    if measured.value is None:
         return measured
-    return Measured(measured.value, "undersampled", f"wings not told from rotors: {why}, and a drone's inner blades, "
-                    "all such a span shows of them, beat as wings do")
+    note = (f"wings not told from rotors: {why}, and a drone's inner blades, all such a span shows of them, beat as "
+            "wings do")
+    return Measured(measured.value, "undersampled", "; ".join(n for n in (measured.note, note) if n))
 
 
 def doppler_band(signal, demodulated, *, prf_hz, wavelength_m, noise_power, hidden_aliasing=None):
@@ -474,8 +484,9 @@ def doppler_band(signal, demodulated, *, prf_hz, wavelength_m, noise_power, hidd
         if strobe.fills_span:
             reason = (f"the brightest frames fill the span 1/Tp = {prf_hz:.0f} Hz in {strobe.n_filled} of "
                       f"{strobe.n_frames}")
-        else:
-            reason = hidden_aliasing
+        elif hidden_aliasing is not None:  # the band shows no aliasing: its half-width is not known
+            return DopplerBand(plain, prf_hz / 2, True, withheld("undersampled", f"micro-Doppler half-width not "
+                                                                 f"known: {hidden_aliasing}"), prf_hz / 2)
     if reason is not None:
         return DopplerBand(plain, prf_hz / 2, True,
                            Measured(_speed_mps(prf_hz / 2, wavelength_m), "aliased",

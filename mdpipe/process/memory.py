@@ -121,20 +121,23 @@ def check_memory(reader, process):
 
 
 
-def iq_plan_bytes(n_samples, n_channels):
-    """Estimated peak bytes of analysing an I/Q recording (:mod:`mdpipe.process.cw`), by part: its samples as
-    complex64 volts, the channels combined (complex128), and one target's analysis (as a capture's, per sample)."""
+def iq_plan_bytes(n_samples, n_channels, stored_bytes_per_sample):
+    """Estimated peak bytes of analysing an I/Q recording (:mod:`mdpipe.process.cw`), by part: its samples as read
+    (``stored_bytes_per_sample`` per sample and channel: a WAV's are mapped, not read, and count nothing), as
+    complex64 volts, the channels combined (complex128, and a complex64 product), and one target's analysis (as a
+    capture's, per sample)."""
+    read = stored_bytes_per_sample * n_samples * n_channels
     samples = 8 * n_samples * n_channels
-    combined = 16 * n_samples
+    combined = 24 * n_samples
     analysis = n_samples * ANALYSIS_BYTES_PER_CHIRP
-    return {"samples": samples, "combined": combined, "analysis": analysis, "base": BASE_BYTES,
-            "peak": samples + combined + analysis + BASE_BYTES}
+    return {"read": read, "samples": samples, "combined": combined, "analysis": analysis, "base": BASE_BYTES,
+            "peak": read + samples + combined + analysis + BASE_BYTES}
 
 
-def check_iq_memory(path, n_samples, params, process):
+def check_iq_memory(path, n_samples, params, process, *, stored_bytes_per_sample=0):
     """Refuse an I/Q recording whose plan (:func:`iq_plan_bytes`) exceeds ``process.max_memory_gb``, before its
     samples are read."""
-    plan = iq_plan_bytes(n_samples, params.n_channels)
+    plan = iq_plan_bytes(n_samples, params.n_channels, stored_bytes_per_sample)
     if plan["peak"] > process.max_memory_gb * GIB:
         raise ParameterError(
             f"{path}: analysing {n_samples:,} I/Q samples x {params.n_channels} RX ({params.duration_s(n_samples):.4g} s) "

@@ -2,9 +2,10 @@
 
 Every feature column ``X`` of a row has a companion ``X_status``. A value with status ``ok`` is a
 measurement mdpipe stands behind. A value with another status is either absent (null, the code says
-why) or present but not stood behind: for ``assumed_blades`` and ``assumed_elevation`` resting on an assumption
-the row names (``n_blades``, ``n_blades_source``, ``elevation_deg``); a tip Doppler with ``few_harmonics``; a
-wingbeat with ``ambiguous_period`` (it or twice it), ``repeats_scatter`` or ``short_bursts`` (not sharp to 3 %).
+why) or present but not stood behind: for ``assumed_blades``, ``assumed_elevation`` and ``assumed_speed`` resting
+on an assumption the row or its status names (``n_blades``, ``n_blades_source``, ``elevation_deg``); a tip Doppler
+with ``few_harmonics``; a wingbeat with ``ambiguous_period`` (it or twice it), ``repeats_scatter`` or
+``short_bursts`` (not sharp to 3 %); a CW recording's rotation or wings with ``undersampled``.
 Programs should use values whose status is ``ok``.
 """
 
@@ -43,6 +44,8 @@ STATUS_CODES = {
     "no_body_line": "no body line stands out of the micro-Doppler",
     "body_unsteady": "the strongest line jumps between the body and rotor lines: no steady body track",
     "velocity_ambiguous": "the Doppler gives the velocity only modulo lambda PRF / 2 and the range track cannot tell which",
+    "assumed_speed": ("an I/Q (CW) recording's body velocity: the one alias of its Doppler under 25 m/s, given on that "
+                      "assumption (a faster target would read another; no range tells which)"),
     "body_only": "only the body line crosses the threshold: no micro-Doppler extent",
     "below_threshold": "nothing in the spectrum stands the threshold above its mean",
     "no_wingbeat": "no repeating wingbeat pattern in the dwell",

@@ -356,7 +356,7 @@ def spectrum_figure(result, path, options=FigureParams()):
 
 def _label(row):
     aliased = " (aliased: at least)" if row["aliased"] in (True, "True") else ""
-    return f"{Path(_name(row['file'])).stem} #{int(row['target'])}{aliased}"
+    return f"{_name(row['file']).removesuffix('.h5')} #{int(row['target'])}{aliased}"
 
 
 def _plain(value, _position=None):
