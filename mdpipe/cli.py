@@ -449,8 +449,8 @@ def _run(jobs, *, on_outcome, debug, progress=None, **kwargs):
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object per target on stdout.")
 @analysis_options
 def process(captures, out_dir, as_json, no_figures, debug, **options):
-    """Detect targets in each CAPTURE (a file, or a folder searched for *.h5 and *.hdf5, and *.wav with --carrier-hz), measure their
-    micro-Doppler features, call drone / bird / none.
+    """Detect targets in each CAPTURE (a file, or a folder searched for *.h5 and *.hdf5, and *.wav with
+    --carrier-hz: docs/IQ_FORMAT.md), measure their micro-Doppler features, call drone / bird / none.
 
     Writes OUT/<stem>/ (for a folder, OUT/<path relative to it, less .h5>/) holding <stem>.features.csv,
     <stem>.run.json and the figures <stem>_range.png,
@@ -581,7 +581,8 @@ def _gather(folder, *, figures, early=None):
                    "(pip install 'mdpipe[dask]').")
 @analysis_options
 def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
-    """Process every capture in INPUT (files, or folders searched recursively for *.h5 and *.hdf5, and *.wav with --carrier-hz) into OUT.
+    """Process every capture in INPUT (files, or folders searched recursively for *.h5 and *.hdf5, and *.wav with
+    --carrier-hz) into OUT.
 
     Each capture's outputs go to OUT/<its path relative to the folder given, less .h5>/, published whole; a capture
     is redone only when its size, mtime or content (SHA-256), mdpipe's version or the options changed

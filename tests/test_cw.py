@@ -229,7 +229,8 @@ def test_a_band_aliased_only_by_the_span_has_no_half_width():
 
     fs = 4000.0
     t = np.arange(8000) / fs
-    z = noise(8000, seed=2) + 10 * np.exp(2j * np.pi * 300 / (2 * np.pi * 1.5) * np.sin(2 * np.pi * 1.5 * t))  # +-300 Hz
+    swing = 300 / (2 * np.pi * 1.5) * np.sin(2 * np.pi * 1.5 * t)  # +-300 Hz at 1.5 Hz
+    z = noise(8000, seed=2) + 10 * np.exp(2j * np.pi * swing)
     band = doppler_band(z, z, prf_hz=fs, wavelength_m=0.0124, noise_power=1.0, hidden_aliasing="a reason")
     assert band.aliased and band.halfwidth.value is None and band.halfwidth.status == "undersampled"
 

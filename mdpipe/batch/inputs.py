@@ -1,8 +1,8 @@
 """Which captures a batch holds and where each one's outputs go.
 
 A file argument is published as ``OUT/<its stem>/``; a folder argument is searched recursively for
-``*.h5`` and ``*.hdf5`` files (Radarlog captures, I/Q recordings), and for I/Q recordings of a
-given carrier (``--carrier-hz``) ``*.wav`` files too, each published under ``OUT/`` at its path relative to that folder, less the
+``*.h5`` and ``*.hdf5`` files (Radarlog captures, I/Q recordings), and, a carrier given (``--carrier-hz``),
+``*.wav`` I/Q recordings too, each published under ``OUT/`` at its path relative to that folder, less the
 suffix (``IN/day2/gull.h5`` -> ``OUT/day2/gull/``), so same-named captures of different subfolders stay
 apart. Two captures that would still share a folder (``gull.h5`` beside ``gull.hdf5``, or beside a subfolder
 ``gull/`` of captures) are refused before anything runs.

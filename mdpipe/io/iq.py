@@ -174,7 +174,8 @@ def _read_wav(path, overrides, check, max_file_bytes):
         raise CaptureFormatError(f"{path}: {channels} audio channel(s); an I/Q recording holds an even number, I "
                                  "then Q of each RX (a mono file has no Q: the sign of Doppler is lost)")
     if data.shape[1] // 2 > IQ_LIMITS["n_channels"][1]:
-        raise CaptureFormatError(f"{path}: {data.shape[1] // 2} I/Q pairs; at most {IQ_LIMITS['n_channels'][1]} are read")
+        raise CaptureFormatError(f"{path}: {data.shape[1] // 2} I/Q pairs; at most {IQ_LIMITS['n_channels'][1]} "
+                                 "are read")
     params = _parameters({"sample_rate_hz": float(rate), "n_channels": data.shape[1] // 2}, overrides, path,
                          how_to="a WAV header holds the sample rate only")
     if data.shape[0] == 0:
@@ -200,7 +201,8 @@ def _read_hdf5(path, overrides, allow_external, check, read=True):
         kind = ds.dtype.kind
         if kind == "c":
             if ds.ndim not in (1, 2):
-                raise CaptureFormatError(f"{path}: complex '/{IQ_DATASET}' has shape {ds.shape}; expected (n,) or (n, C)")
+                raise CaptureFormatError(f"{path}: complex '/{IQ_DATASET}' has shape {ds.shape}; expected (n,) or "
+                                         "(n, C)")
             channels = 1 if ds.ndim == 1 else ds.shape[1]
         elif kind in INTEGER_KINDS + "f" and ds.dtype.itemsize <= 8:
             if ds.ndim not in (2, 3) or ds.shape[-1] != 2:

@@ -432,8 +432,8 @@ def hidden_aliasing_note(*, prf_hz, wavelength_m, elevation_deg):
     span_mps = wavelength_m * prf_hz / 4
     if span_mps >= least_mps:
         return None
-    return (f"the span reaches +-{span_mps:.2g} m/s, under the {least_mps:.2g} m/s a rotor's tips reach, and the noise, "
-            "read from the echo (no range bins), may be their folded floor")
+    return (f"the span reaches +-{span_mps:.2g} m/s, under the {least_mps:.2g} m/s a rotor's tips reach, and the "
+            "noise, read from the echo (no range bins), may be their folded floor")
 
 
 def _undersampled(turn, why):

@@ -120,7 +120,6 @@ def check_memory(reader, process):
         f"{' or '.join(hints)}, or raise --max-memory-gb")
 
 
-
 def iq_plan_bytes(n_samples, n_channels, stored_bytes_per_sample):
     """Estimated peak bytes of analysing an I/Q recording (:mod:`mdpipe.process.cw`), by part: its samples as read
     (``stored_bytes_per_sample`` per sample and channel: a WAV's are mapped, not read, and count nothing), as
@@ -140,7 +139,7 @@ def check_iq_memory(path, n_samples, params, process, *, stored_bytes_per_sample
     plan = iq_plan_bytes(n_samples, params.n_channels, stored_bytes_per_sample)
     if plan["peak"] > process.max_memory_gb * GIB:
         raise ParameterError(
-            f"{path}: analysing {n_samples:,} I/Q samples x {params.n_channels} RX ({params.duration_s(n_samples):.4g} s) "
-            f"would need about {plan['peak'] / GIB:.2f} GB, over the {process.max_memory_gb:g} GB budget; raise "
+            f"{path}: analysing {n_samples:,} I/Q samples x {params.n_channels} RX "
+            f"({params.duration_s(n_samples):.4g} s) would need about {plan['peak'] / GIB:.2f} GB, over the {process.max_memory_gb:g} GB budget; raise "
             "--max-memory-gb or analyse a shorter recording")
     return plan
