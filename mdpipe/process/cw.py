@@ -15,8 +15,10 @@ between blade flashes or wing strokes), the median over the columns. Either medi
 more than three robust standard deviations over it (a band of micro-Doppler lights them: 150 lines 17 dB up over
 a fifth of the span biased it 8 %, now under 5 %). For white noise the cells are exponential, so a quantile q is
 ``-ln(1 - q)`` times their mean. Where the echo fills every cell (blade lines folded over the whole span by a low
-sample rate) both read its floor: the noise is overestimated and the echo's SNR under-read. Noise coloured by a
-receiver filter narrower than the sampling is read at its highest level (:func:`noise_power`).
+sample rate) both read its floor: the noise is overestimated and the echo's SNR under-read. Noise coloured across the
+span (a receiver filter narrower than the sampling, a 1/f rise, clutter spread about 0 m/s) is first made white:
+each Doppler cell is scaled by the noise's level there, read from the bands that hold no lines
+(:func:`noise_profile`, :func:`whitened`).
 """
 
 import math
@@ -27,8 +29,10 @@ import numpy as np
 from mdpipe.errors import ParameterError
 from mdpipe.io.iq import read_iq
 from mdpipe.process import memory, selection
+from mdpipe.process.cfar import gamma_isf
 from mdpipe.process.classify import classify
 from mdpipe.process.doppler import periodic_hann
+from mdpipe.process.filters import running_median
 from mdpipe.process.features import analyse_target
 from mdpipe.process.result import CaptureResult, base_row
 
@@ -38,9 +42,12 @@ NOISE_FRAME_SAMPLES = (16, 1024)
 NOISE_QUANTILE = 0.1
 NOISE_BANDS = 32
 NOISE_OUTLIER_SIGMAS = 3.0
-COLOUR_SIGMAS = 3.0         # how closely a column's statistics must be noise's (standard errors)
-COLOUR_COLUMNS = 2          # noise-like columns within COLOUR_TOP_DB of the highest: a passband spans several
-COLOUR_TOP_DB = 3.0
+COLOUR_SIGMAS = 3.0         # how closely a band's statistics must be noise's (standard errors)
+COLOUR_TOP_DB = 3.0         # a band this far under one beside it is an echo's skirt, not noise
+PROFILE_CELLS = 512         # fine cells per band of the noise profile, at the least ...
+PROFILE_BANDS = 128         # ... and bands at most
+PROFILE_SMOOTH = 7          # bands over which the profile's median is taken
+LOCAL_CELLS = 17            # detection cells about each whose median is its noise, the noise coloured
 BLACKMAN_HARRIS = (0.35875, 0.48829, 0.14128, 0.01168)
 DETECTION_BLOCK = 256       # samples per block of the detection test's averaged spectrum
 
@@ -76,49 +83,97 @@ def _median_and_error(values):
 
 @dataclass(frozen=True)
 class NoiseEstimate:
-    """The receiver noise per sample (V^2) read from a recording (the lower of its two readings, or, the noise
-    coloured, its highest level: module notes), the relative standard error of that reading, both readings, and the
-    ratio of the coloured noise's highest level to the lower reading (1 where the noise is white)."""
+    """The receiver noise per sample (V^2) read from a recording (the lower of its two readings: module notes), the
+    relative standard error of that reading, and both readings."""
 
     power: float
     relative_error: float
     dwell: float
     framed: float
-    colour: float = 1.0
 
 
-def _noise_like(frame_cells, dwell_cells):
-    """Which Doppler columns of short frames' powers ``frame_cells`` (frames, columns) are receiver noise's: their
-    powers vary over time as noise's do (exponential: variance the square of the mean, to ``COLOUR_SIGMAS`` standard
-    errors, sqrt(8 / frames); a flash or a wing stroke passing makes it larger, a steady line smaller), and the fine
-    cells of the dwell's periodogram ``dwell_cells`` (Blackman-Harris, FFT order) within each column are exponential
-    too (mean over median ln 2 times, to ``COLOUR_SIGMAS`` of about 1.5 sqrt(2 / cells), neighbours correlated: a
-    rotor's or a wing's lines stand out there, 5 to 50 000 times). Returns (mask, the mean of the fine cells per
-    column: the frames' own level holds their short window's leakage from strong columns beside, 26 dB in a column
-    two from a band 53 dB up)."""
-    frames, n_columns = frame_cells.shape
-    mean = frame_cells.mean(axis=0)
-    in_time = np.abs(frame_cells.var(axis=0) / np.maximum(mean, np.finfo(float).tiny) ** 2 - 1.0)
-    column = np.rint(np.arange(len(dwell_cells)) * n_columns / len(dwell_cells)).astype(np.int64) % n_columns
-    sums = np.bincount(column, weights=dwell_cells, minlength=n_columns)
-    counts = np.bincount(column, minlength=n_columns)
-    medians = np.array([np.median(dwell_cells[column == c]) for c in range(n_columns)])
-    in_frequency = sums / counts / np.maximum(medians, np.finfo(float).tiny) * math.log(2.0) - 1.0
-    like = ((in_time < COLOUR_SIGMAS * math.sqrt(8.0 / frames))
-            & (in_frequency < COLOUR_SIGMAS * 1.5 * np.sqrt(2.0 / counts)))
-    return like, sums / counts
+def _line_free(cells):
+    """Whether fine cells ``cells`` hold no lines: exponential, their mean ln 2 over their median to ``COLOUR_SIGMAS``
+    of about 1.5 sqrt(2 / cells) (Blackman-Harris neighbours correlated; a rotor's or a wing's lines stand out there
+    5 to 50 000 times)."""
+    return np.mean(cells) / max(np.median(cells), np.finfo(float).tiny) * math.log(2.0) - 1.0 < \
+        COLOUR_SIGMAS * 1.5 * math.sqrt(2.0 / len(cells))
+
+
+def _steady(signal, n_bands):
+    """Per band of ``n_bands`` over the span (FFT order), whether its power varies over frames of ``n_bands`` samples
+    (one cell a band, periodic Hann) as noise's does: exponential, the variance the square of the mean to
+    ``COLOUR_SIGMAS`` standard errors (sqrt(8 / frames)). Wings sweeping through a band light it by turns (a bird's
+    skirt beside its body line is smooth, but not steady)."""
+    frames = len(signal) // n_bands
+    window = periodic_hann(n_bands)
+    power = np.abs(np.fft.fft(np.asarray(signal[:frames * n_bands]).reshape(frames, n_bands) * window, axis=1)) ** 2
+    mean = power.mean(axis=0)
+    ratio = power.var(axis=0) / np.maximum(mean, np.finfo(float).tiny) ** 2
+    return np.abs(ratio - 1.0) < COLOUR_SIGMAS * math.sqrt(8.0 / frames)
+
+
+@dataclass(frozen=True)
+class NoiseProfile:
+    """The receiver noise's level across the span (:func:`noise_profile`): per FFT cell of the signal (FFT order,
+    V^2 per sample), its spread (highest over lowest, on the bands that show it) and whether it is coloured."""
+
+    per_cell: np.ndarray
+    spread: float
+    coloured: bool
+
+
+def noise_profile(signal):
+    """The receiver noise's level across the span, from the dwell's Blackman-Harris periodogram in bands of
+    ``PROFILE_CELLS`` cells or more (``PROFILE_BANDS`` at most, a power of two): each band's lower ``NOISE_QUANTILE``,
+    on the bands that hold no lines (:func:`_line_free`), whose power varies over time as noise's does
+    (:func:`_steady`) and that lie no more than ``COLOUR_TOP_DB`` under a band beside them (a bird's smooth skirt
+    beside its body line, whitened as noise without the last two: 13 of the 114 birds of ``make offmodel-cw`` lost, 2
+    with them), interpolated (in dB) over the others and smoothed over ``PROFILE_SMOOTH`` bands, each band then the
+    highest of itself and its two neighbours (a sharp filter's edge whitened as its passband, not under it).
+    Coloured where its highest stands over its lowest by more than twice ``COLOUR_SIGMAS`` times the smoothed levels'
+    spread for white noise (a receiver filter narrower than the sampling, a 1/f rise near 0 Hz, clutter spread about
+    0 m/s)."""
+    n = len(signal)
+    window = blackman_harris(n)
+    cells = np.abs(np.fft.fft(signal * window)) ** 2 / np.sum(window ** 2)
+    n_bands = int(np.clip(n // PROFILE_CELLS, PROFILE_SMOOTH, PROFILE_BANDS))
+    n_bands = 2 ** int(math.log2(n_bands))  # frames of n_bands samples: one cell a band, the bands' own
+    bands = np.array_split(cells, n_bands)
+    level = np.array([_exponential_mean(band, axis=0) for band in bands])
+    free = np.array([_line_free(band) for band in bands])
+    free &= _steady(signal, n_bands)
+    free &= level * 10 ** (COLOUR_TOP_DB / 10) >= np.maximum(np.roll(level, 1), np.roll(level, -1))
+    flat = np.full(n, float(np.median(level)))
+    if np.count_nonzero(free) < PROFILE_SMOOTH:
+        return NoiseProfile(flat, 1.0, False)
+    shown = np.flatnonzero(free)
+    log_level = np.interp(np.arange(n_bands), shown, np.log(level[shown]), period=n_bands)
+    half = PROFILE_SMOOTH // 2
+    smoothed = running_median(np.concatenate([log_level[-half:], log_level, log_level[:half]]), PROFILE_SMOOTH)[
+        half:half + n_bands]
+    spread = float(np.exp(smoothed[shown].max() - smoothed[shown].min()))
+    # a band's level for white noise: the lower tenth of n exponential cells, 3 / sqrt(n) relative, Blackman-Harris
+    # neighbours making it 1.5 times that; the median over PROFILE_SMOOTH bands, 1.25 / sqrt of them
+    white_spread = 3.0 * 1.5 / math.sqrt(n / n_bands) * 1.25 / math.sqrt(PROFILE_SMOOTH)
+    coloured = math.log(spread) > 2 * COLOUR_SIGMAS * white_spread
+    if not coloured:
+        return NoiseProfile(flat, spread, False)
+    upper = np.maximum(smoothed, np.maximum(np.roll(smoothed, 1), np.roll(smoothed, -1)))  # a step's cells not under
+    band_of_cell = np.repeat(np.arange(n_bands), [len(band) for band in bands])
+    return NoiseProfile(np.exp(upper[band_of_cell]), spread, True)
+
+
+def whitened(signal, profile):
+    """``signal`` with its noise made white at the median level of ``profile`` (a :class:`NoiseProfile`): each
+    Doppler cell scaled by the square root of that level over the profile's there."""
+    reference = float(np.median(profile.per_cell))
+    return np.fft.ifft(np.fft.fft(signal) * np.sqrt(reference / profile.per_cell))
 
 
 def noise_power(signal, *, frame):
-    """The receiver noise of complex ``signal`` (its mean removed), read from the signal: a :class:`NoiseEstimate`.
-
-    Coloured noise (a receiver's filter narrower than its sampling leaves noise over part of the span, much weaker
-    beyond): the columns of short frames that are noise's (:func:`_noise_like`) stand at levels apart. Where
-    the highest of them stands over the lower reading by more than twice ``COLOUR_SIGMAS`` of its standard errors,
-    with ``COLOUR_COLUMNS`` or more of them within ``COLOUR_TOP_DB`` of it (a passband is flat over columns) and
-    none of them ``COLOUR_TOP_DB`` under a column beside it (a bird's skirt beside its body line is smooth and
-    steady too: two birds' read as the noise, 26 and 43 dB up), it is the noise (the noise of a receiver filtered
-    to a third of the span read as a drone's band, before)."""
+    """The receiver noise of complex ``signal`` (its mean removed, its noise white: :func:`whitened`), read from the
+    signal: a :class:`NoiseEstimate`."""
     window = blackman_harris(len(signal))
     cells = np.abs(np.fft.fft(signal * window)) ** 2 / np.sum(window ** 2)
     dwell, dwell_error = _median_and_error([_exponential_mean(part, axis=0)
@@ -128,15 +183,9 @@ def noise_power(signal, *, frame):
     frames = np.asarray(signal[:n_frames * frame]).reshape(n_frames, frame)
     frame_cells = np.abs(np.fft.fft(frames * window, axis=1)) ** 2 / np.sum(window ** 2)
     framed, framed_error = _median_and_error(_exponential_mean(frame_cells, axis=0))
-    power, error = (dwell, dwell_error) if dwell <= framed else (framed, framed_error)
-    like, level = _noise_like(frame_cells, cells)
-    near = 10 ** (COLOUR_TOP_DB / 10)
-    like &= level * near >= np.maximum(np.roll(level, 1), np.roll(level, -1))  # no echo's skirt beside a stronger line
-    highest = float(level[like].max()) if like.any() else 0.0
-    top = np.count_nonzero(like & (level * near >= highest))
-    if top >= COLOUR_COLUMNS and highest > power * (1.0 + 2 * COLOUR_SIGMAS / math.sqrt(n_frames)):
-        return NoiseEstimate(highest, 1.0 / math.sqrt(n_frames), dwell, framed, highest / power)
-    return NoiseEstimate(power, error, dwell, framed)
+    if dwell <= framed:
+        return NoiseEstimate(dwell, dwell_error, dwell, framed)
+    return NoiseEstimate(framed, framed_error, dwell, framed)
 
 
 def detection_spectrum(signal, *, block=DETECTION_BLOCK):
@@ -162,13 +211,25 @@ def combined(samples):
     return (samples @ weight[0].astype(np.complex64)).astype(np.complex128), float(gain[0])
 
 
-def detection(signal, *, sample_rate_hz, false_alarm_probability):
+def detection(signal, *, sample_rate_hz, false_alarm_probability, coloured=False):
     """Whether anything moves in ``signal`` (its mean removed): the receiver noise read from it
     (:class:`NoiseEstimate`) and the :class:`~mdpipe.process.selection.DetectionTest` of its Doppler spectrum
-    against that noise, the thresholds allowing for the reading's error (``noise_error``)."""
+    against that noise, the thresholds allowing for the reading's error (``noise_error``). Where the noise was
+    ``coloured`` (whitened by a profile whose bands cannot follow a steep rise), each cell is held against the
+    median of the ``LOCAL_CELLS`` about it instead, as a line stands over its neighbours (the band test then reads
+    nothing: a whitened floor is level)."""
     estimate = noise_power(signal, frame=noise_frame(sample_rate_hz))
     power, blocks = detection_spectrum(signal)
     window = periodic_hann(DETECTION_BLOCK)
+    if coloured:
+        half = LOCAL_CELLS // 2
+        local = running_median(np.concatenate([power[0, -half:], power[0], power[0, :half]]), LOCAL_CELLS)[
+            half:half + power.shape[1]]
+        local_noise = local / (gamma_isf(blocks, 0.5) / blocks)  # a Gamma(looks) mean's median to its mean
+        test = selection.cell_test(power / local_noise[None, :], looks=blocks, noise_cell=1.0,
+                                   noise_error=1.2533 / math.sqrt(LOCAL_CELLS * blocks),
+                                   false_alarm_probability=false_alarm_probability)
+        return estimate, test
     test = selection.cell_test(power, looks=blocks, noise_cell=estimate.power * np.sum(window ** 2)
                                / np.sum(window) ** 2, noise_error=estimate.relative_error,
                                false_alarm_probability=false_alarm_probability)
@@ -209,15 +270,19 @@ def process_recording(path, process, *, overrides=None, allow_external=False):
     signal = signal - signal.mean()  # static clutter and the radar's own leakage
     if not np.any(np.abs(signal) > 0):
         raise ParameterError(f"{path}: every I/Q sample is the same; the recording holds no signal")
+    profile = noise_profile(signal)
+    if profile.coloured:
+        signal = whitened(signal, profile)
     estimate, test = detection(signal, sample_rate_hz=params.sample_rate_hz,
-                               false_alarm_probability=process.false_alarm_probability)
+                               false_alarm_probability=process.false_alarm_probability, coloured=profile.coloured)
     noise = estimate.power
     row = base_row(path, process, params, n_samples=recording.n_samples, clipped=recording.clipped_fraction,
                    interference=None)
     notes = list(recording.warnings)
-    if estimate.colour > 1.0:
-        notes.append(f"the receiver noise is coloured (a filter narrower than the sampling?): read at its highest "
-                     f"level, {10 * math.log10(estimate.colour):.1f} dB over its lower reading")
+    if profile.coloured:
+        notes.append(f"the receiver noise is coloured, {10 * math.log10(profile.spread):.1f} dB from its lowest to its "
+                     "highest level across the span (a filter narrower than the sampling, a rise near 0 Hz, or "
+                     "clutter): the echo is read whitened by it")
     layout = recording.layout.describe()
     if test.score.max() < 1:
         row["notes"] = "; ".join([_no_detection_note(test)] + notes)
