@@ -199,7 +199,7 @@ def dealias_velocity(doppler_mps, *, span_mps, track, ranged=True):
     Without a track (``None``): a target held in one range bin (the Doppler stands), or, not ``ranged``, an echo
     without range (a CW recording), where the Doppler stands only when every other alias is faster than
     ``MAX_UNRANGED_SPEED_MPS`` (twice the speed the track's test allows: no track bounds it; a target receding at 30
-    m/s sampled at 8 kHz at 24 GHz read -19.7 m/s under 25 m/s), and is given as ``assumed_speed`` where that holds
+    m/s sampled at 8 kHz at 24 GHz read -19.97 m/s under 25 m/s), and is given as ``assumed_speed`` where that holds
     for ``MAX_SPEED_MPS`` only.
     """
     if track is None and ranged:
@@ -440,10 +440,10 @@ def _undersampled(turn, why):
     """A :class:`Rotation` read from an echo without range whose span cannot hold a rotor's tips (``why``:
     :func:`hidden_aliasing_note`): its values kept, their status (``ok``, or a caveat such as ``assumed_blades``,
     which the note keeps) made ``undersampled``. On the scenes of ``make offmodel`` recorded by a CW radar at the
-    scenes' PRFs (``make offmodel-cw``), such rates were at half or three times the truth in 4 of 32 recorded through
-    a filter and 3 of 43 sampled without one (flashes shorter than a sample, caught only where samples fall; folded
-    lines that coincide; a receiver's filter cutting the tips off), where those with the tips inside the span were
-    all right."""
+    scenes' PRFs (``make offmodel-cw``), such rates were more than 2 % off (at half or three times the truth and the
+    like) in 5 of 33 recorded through a filter and 4 of 45 sampled without one (flashes shorter than a sample, caught
+    only where samples fall; folded lines that coincide; a receiver's filter cutting the tips off), where those with
+    the tips inside the span were all right."""
     def caveat(measured, what):
         if measured.value is None:
             return measured
