@@ -72,6 +72,9 @@ def test_the_hdf5_layouts_read_the_same_samples(tmp_path, layout):
     expected = z if layout != "real pairs" else z[:, :1]
     np.testing.assert_allclose(recording.samples, 2.0 * expected, rtol=1e-6)
     assert is_iq_recording(path) and not is_iq_recording(SAMPLES / "fimi_1rx.h5")
+    with h5py.File(tmp_path / "odd.h5", "w") as h5:  # a capture with an /IQ beside its channels, /Chn1 missing
+        h5["IQ"], h5["Chn2"] = data, np.zeros((4, 8), np.int16)
+    assert not is_iq_recording(tmp_path / "odd.h5")
     params, n, _ = probe_iq(path)
     assert (n, params.n_channels, params.wavelength_m) == (64, expected.shape[1], pytest.approx(299792458 / 77e9))
 

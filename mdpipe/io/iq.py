@@ -52,8 +52,9 @@ def _hdf5_signature(path):
 
 def is_iq_recording(path):
     """Whether ``path`` names an I/Q recording: a ``*.wav`` file, or an HDF5 file whose root holds ``/IQ`` and
-    no Radarlog sample dataset. Anything that cannot be told (a missing file, a FIFO) is left to the Radarlog
-    reader, whose errors name it."""
+    no Radarlog sample dataset (``/Data`` or any ``/ChnK``: a capture missing ``/Chn1`` is the Radarlog reader's to
+    refuse). Anything that cannot be told (a missing file, a FIFO) is left to the Radarlog reader, whose errors name
+    it."""
     if str(path).lower().endswith(WAV_SUFFIXES):
         return True
     try:
@@ -67,7 +68,7 @@ def is_iq_recording(path):
             names = set(h5.keys())
     except Exception:  # an unreadable HDF5 file: the Radarlog reader says why
         return False
-    return IQ_DATASET in names and "Chn1" not in names and "Data" not in names
+    return IQ_DATASET in names and "Data" not in names and not any(n.startswith("Chn") for n in names)
 
 
 @dataclass(frozen=True)
