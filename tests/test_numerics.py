@@ -43,6 +43,8 @@ def test_moving_average_inside_averages_only_the_samples_inside(x, size):
 def test_running_min_and_median(x, size):
     np.testing.assert_array_equal(filters.running_min(x, size), ndimage.minimum_filter1d(x, size, mode="nearest"))
     np.testing.assert_array_equal(filters.running_median(x, size), ndimage.median_filter(x, size=size, mode="nearest"))
+    np.testing.assert_array_equal(filters.running_median(x, size, mode="wrap"),
+                                  ndimage.median_filter(x, size=size, mode="wrap"))
 
 def test_local_maxima_against_argrelextrema():
     """Strict maxima are scipy's; a plateau counts once at its left end; NaN is never a maximum."""

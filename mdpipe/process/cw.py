@@ -149,9 +149,7 @@ def noise_profile(signal):
         return NoiseProfile(flat, 1.0, False)
     shown = np.flatnonzero(free)
     log_level = np.interp(np.arange(n_bands), shown, np.log(level[shown]), period=n_bands)
-    half = PROFILE_SMOOTH // 2
-    smoothed = running_median(np.concatenate([log_level[-half:], log_level, log_level[:half]]), PROFILE_SMOOTH)[
-        half:half + n_bands]
+    smoothed = running_median(log_level, PROFILE_SMOOTH, mode="wrap")
     spread = float(np.exp(smoothed[shown].max() - smoothed[shown].min()))
     # a band's level for white noise: the lower tenth of n exponential cells, 3 / sqrt(n) relative, Blackman-Harris
     # neighbours making it 1.5 times that; the median over PROFILE_SMOOTH bands, 1.25 / sqrt of them
@@ -222,9 +220,7 @@ def detection(signal, *, sample_rate_hz, false_alarm_probability, coloured=False
     power, blocks = detection_spectrum(signal)
     window = periodic_hann(DETECTION_BLOCK)
     if coloured:
-        half = LOCAL_CELLS // 2
-        local = running_median(np.concatenate([power[0, -half:], power[0], power[0, :half]]), LOCAL_CELLS)[
-            half:half + power.shape[1]]
+        local = running_median(power[0], LOCAL_CELLS, mode="wrap")
         local_noise = local / (gamma_isf(blocks, 0.5) / blocks)  # a Gamma(looks) mean's median to its mean
         test = selection.cell_test(power / local_noise[None, :], looks=blocks, noise_cell=1.0,
                                    noise_error=1.2533 / math.sqrt(LOCAL_CELLS * blocks),
@@ -239,14 +235,6 @@ def detection(signal, *, sample_rate_hz, false_alarm_probability, coloured=False
 def min_samples(sample_rate_hz):
     """The fewest I/Q samples analysed: a capture's fewest chirps, one detection block, and 16 noise frames."""
     return max(MIN_SAMPLES, DETECTION_BLOCK, 16 * noise_frame(sample_rate_hz))
-
-
-def _no_detection_note(test):
-    def db(x):
-        return 10 * np.log10(max(x, np.finfo(float).tiny))
-    return (f"nothing moving above the noise at a false-alarm probability of {test.false_alarm_probability:g} per "
-            f"recording (strongest Doppler line {db(test.line.max()):.1f} dB < {db(test.line_threshold):.1f} dB, "
-            f"band {db(test.band.max()):.1f} dB < {db(test.band_threshold):.1f} dB, over the noise per cell)")
 
 
 def process_recording(path, process, *, overrides=None, allow_external=False):
@@ -285,7 +273,8 @@ def process_recording(path, process, *, overrides=None, allow_external=False):
                      "clutter): the echo is read whitened by it")
     layout = recording.layout.describe()
     if test.score.max() < 1:
-        row["notes"] = "; ".join([_no_detection_note(test)] + notes)
+        row["notes"] = "; ".join([f"nothing moving above the noise at a false-alarm probability of "
+                                  f"{test.false_alarm_probability:g} per recording ({test.shortfall()})"] + notes)
         return CaptureResult(str(path), params, layout, None, [], [], [row], noise_power=noise, process=process,
                              detection_test=test)
     analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m, noise_power=noise,

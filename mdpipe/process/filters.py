@@ -41,9 +41,10 @@ def running_min(x, size):
     return sliding_window_view(_padded(np.asarray(x), size, "nearest", 0), size).min(axis=-1)
 
 
-def running_median(x, size):
-    """Median over ``size`` (odd) neighbours centred on each sample (scipy.ndimage.median_filter, nearest)."""
-    return np.median(sliding_window_view(_padded(np.asarray(x), size, "nearest", 0), size), axis=-1)
+def running_median(x, size, *, mode="nearest"):
+    """Median over ``size`` (odd) neighbours centred on each sample (scipy.ndimage.median_filter; ``mode``
+    ``"nearest"``, or ``"wrap"`` for a circular axis such as a Doppler span)."""
+    return np.median(sliding_window_view(_padded(np.asarray(x), size, mode, 0), size), axis=-1)
 
 
 def local_maxima(values):

@@ -164,12 +164,8 @@ def _base_row(path, stats, process, params, clipped, common):
 
 def no_detection_note(test, process):
     """Why nothing was detected: the strongest line and band against their thresholds (dB over the noise)."""
-    def db(x):
-        return 10 * np.log10(max(x, np.finfo(float).tiny))
     return (f"no moving target above the noise in {process.min_range_m:g}-{process.max_range_m:g} m at a false-alarm "
-            f"probability of {test.false_alarm_probability:g} per capture (strongest Doppler line "
-            f"{db(test.line.max()):.1f} dB < {db(test.line_threshold):.1f} dB, strongest band "
-            f"{db(test.band.max()):.1f} dB < {db(test.band_threshold):.1f} dB, over the noise per cell)")
+            f"probability of {test.false_alarm_probability:g} per capture ({test.shortfall()})")
 
 
 def process_capture(path, process, *, frame_counter="auto", overrides=None, allow_external=False):

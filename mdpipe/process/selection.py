@@ -84,6 +84,14 @@ class DetectionTest:
     looks: int
     band_looks: int
 
+    def shortfall(self):
+        """The strongest line and band against their thresholds, dB over the noise per cell (why nothing was
+        detected)."""
+        def db(x):
+            return 10 * np.log10(max(x, np.finfo(float).tiny))
+        return (f"strongest Doppler line {db(self.line.max()):.1f} dB < {db(self.line_threshold):.1f} dB, strongest "
+                f"band {db(self.band.max()):.1f} dB < {db(self.band_threshold):.1f} dB, over the noise per cell")
+
     @property
     def score(self):
         """Per gate bin, the larger of line and band over their thresholds: a target where >= 1."""
