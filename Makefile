@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades offmodel-cw readme clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades offmodel-cw offmodel-cw-hum readme clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -112,6 +112,11 @@ offmodel-blades: $(MDPIPE)
 CW_DIR ?= $(BENCH_DIR)/mdpipe_cw
 offmodel-cw: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_cw.py --workdir $(CW_DIR) -j 2
+
+# The same recordings with mains hum added (50 Hz and its harmonics, in I only, 20 dB over the noise; a copy of each
+# kept beside it under CW_DIR, ~0.3 GB): what taking the hum out (mdpipe/process/mains.py) leaves of each reading.
+offmodel-cw-hum: $(MDPIPE)
+	$(BIN)/python benchmarks/bench_cw.py --workdir $(CW_DIR) -j 2 --hum-db 20
 
 # Every capture under IN (a folder, searched recursively), processed by JOBS worker processes into OUT
 # (make batch IN=captures OUT=results JOBS=4 ARGS="--blades 3"). Only captures whose input, options or

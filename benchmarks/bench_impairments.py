@@ -14,8 +14,9 @@ share, against the unclipped reading of the same capture:
 
 Then, the same captures with the receiver gain 6 dB lower and another radar's chirps crossing ours (a burst every 37.3,
 9.71 or 2.43 chirps; short or long, strong or weak), or a TX-RX leakage beat whose amplitude and phase drift, with a DC
-offset (``tests/hostile.py``): new detections, the ones read drone or bird, targets whose class changed (of them, withheld
-as the impairment's echo), values moved.
+offset, or the supply's 50 Hz ripple on the gain (each static echo then carries its Doppler lines about 0 Hz; read with
+mains hum taken out, the default, and kept, ``--mains-hz none``) (``tests/hostile.py``): new detections, the ones read
+drone or bird, targets whose class changed (of them, withheld as the impairment's echo), values moved.
 
 Usage: ``python benchmarks/bench_impairments.py [--scenes 24] [--shares 0.001,0.01,0.03,0.1,0.3,0.5]``
 (``make bench-impairments``).
@@ -26,6 +27,7 @@ import re
 import sys
 import tempfile
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from threadpoolctl import threadpool_limits
@@ -63,7 +65,8 @@ def targets(rows):
     return [row for row in rows if row["range_m"] is not None]
 
 
-IMPAIRMENTS = {
+HUM_KEPT = {"mains_hz": "none"}  # the processing told not to look for mains hum (as before mdpipe/process/mains.py)
+IMPAIRMENTS = {  # name: (how the capture is impaired, what the processing is told besides the capture's own options)
     "another radar's chirps, a burst every 37.3 chirps": lambda path, out: hostile.interfered(path, out, 37.3),
     "another radar's chirps, a burst every 9.71 chirps": lambda path, out: hostile.interfered(path, out, 9.71),
     "the same, bursts of 24 samples": lambda path, out: hostile.interfered(path, out, 9.71, burst_samples=24),
@@ -71,6 +74,11 @@ IMPAIRMENTS = {
                                                                                        amplitude=1300.0),
     "another radar's chirps, a burst every 2.43 chirps": lambda path, out: hostile.interfered(path, out, 2.43),
     "TX-RX leakage drifting 1 % and 0.05 rad, DC offset": lambda path, out: hostile.leaking(path, out),
+    "the supply's 50 Hz ripple on the gain, 1 % (its 2nd harmonic; 1st, 3rd, 4th weaker)":
+        lambda path, out: hostile.rippled(path, out, 0.01),
+    "the same ripple, the hum kept (`--mains-hz none`)": (lambda path, out: hostile.rippled(path, out, 0.01), HUM_KEPT),
+    "the supply's ripple, 5 %": lambda path, out: hostile.rippled(path, out, 0.05),
+    "the 5 % ripple, the hum kept (`--mains-hz none`)": (lambda path, out: hostile.rippled(path, out, 0.05), HUM_KEPT),
 }
 
 
@@ -137,9 +145,11 @@ def main(argv=None):
             for share in shares:
                 hostile.overdriven(path, out, share)
                 add(totals[share], compare(base.rows, process_capture(out, params).rows, base.params.range_bin_m))
-            for impairment, make in IMPAIRMENTS.items():
+            for impairment, entry in IMPAIRMENTS.items():
+                make, options = entry if isinstance(entry, tuple) else (entry, {})
                 make(path, out)
-                add(others[impairment], compare(base.rows, process_capture(out, params).rows, base.params.range_bin_m))
+                add(others[impairment], compare(base.rows, process_capture(out, replace(params, **options)).rows,
+                                                base.params.range_bin_m))
             out.unlink()
     print(f"{len(items)} captures ({len(SAMPLES)} bundled samples, {args.scenes} default-sweep scenes), {n_targets} "
           f"targets unclipped; {time.perf_counter() - start:.0f} s\n")

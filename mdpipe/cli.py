@@ -18,7 +18,7 @@ from mdpipe import __version__
 from mdpipe.errors import MdpipeError, one_line
 from mdpipe.io import open_capture
 from mdpipe.io.radarlog import ATTRIBUTES
-from mdpipe.params import RANGE_WINDOWS, FigureParams, ProcessParams
+from mdpipe.params import MAINS_CHOICES, RANGE_WINDOWS, FigureParams, ProcessParams
 
 PROGRESS_MIN_SAMPLES = 1 << 25
 EXIT_USAGE, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_TERMINATED = 1, 2, 130, 128 + signal.SIGTERM
@@ -385,6 +385,10 @@ def analysis_options(func):
         click.option("--max-memory-gb", type=click.FloatRange(min=0, min_open=True),
                      default=ProcessParams.max_memory_gb, show_default=True,
                      help="Refuse a capture whose planned memory exceeds this (GiB)."),
+        click.option("--mains-hz", type=click.Choice(MAINS_CHOICES), default=ProcessParams.mains_hz, show_default=True,
+                     help="Mains hum (lines at the grid's harmonics) searched in each echo and taken out: at 50 and 60 "
+                          "Hz, one of them, or none (a receiver on batteries; a rotor held at a multiple of the grid's "
+                          "rate, whose lines hum's would be)."),
     ]
     func = attribute_overrides(func)
     for option in reversed(options):

@@ -287,6 +287,9 @@ class ProcessParams:
         Chirps read per chunk.
     max_memory_gb : float
         A capture whose planned memory (:mod:`mdpipe.process.memory`) exceeds this many GiB is refused.
+    mains_hz : str
+        Mains hum searched in each echo and taken out (:mod:`mdpipe.process.mains`): ``auto`` (50 and 60 Hz),
+        ``50``, ``60``, or ``none`` (a receiver on batteries, or a rotor held at a multiple of the grid's rate).
     """
 
     min_range_m: float = 1.0
@@ -307,6 +310,7 @@ class ProcessParams:
     range_bins: str = "in-use"
     chunk_chirps: int = 256
     max_memory_gb: float = 2.0
+    mains_hz: str = "auto"
 
     def __post_init__(self):
         require_positive(max_range_m=self.max_range_m, chunk_chirps=self.chunk_chirps,
@@ -336,9 +340,17 @@ class ProcessParams:
             value = getattr(self, name)
             if value is not None:
                 require_positive(**{name: value})
+        if self.mains_hz not in MAINS_CHOICES:
+            raise ParameterError(f"mains_hz={self.mains_hz!r} must be one of {', '.join(MAINS_CHOICES)}")
+
+    @property
+    def mains_frequencies_hz(self):
+        """The grid frequencies whose hum is searched (Hz): none for ``mains_hz`` ``none``."""
+        return {"auto": (50.0, 60.0), "50": (50.0,), "60": (60.0,), "none": ()}[self.mains_hz]
 
 
 RANGE_WINDOWS = ("hann", "hamming", "blackman", "boxcar")
+MAINS_CHOICES = ("auto", "50", "60", "none")
 
 
 DOPPLER_LIMIT_MODES = ("auto", "full")

@@ -261,3 +261,20 @@ def leaking(path, out, *, beat_share=0.02, amplitude=13000.0, drift=0.01, dc=300
         beat = np.cos(2 * np.pi * beat_share * float(attrs["fs"]) * sample_s + 0.05 * np.sin(2 * np.pi * 0.4 * t_s))
         return 0.5 * counts + amplitude * (1 + drift * np.sin(2 * np.pi * 0.7 * t_s)) * beat + dc
     return _rewritten(path, out, change, gain=0.5)
+
+
+RIPPLE_ORDERS = ((1, 0.5, 0.3), (2, 1.0, 0.0), (3, 0.3, 2.0), (4, 0.5, 1.0))  # (harmonic of 50 Hz, weight, phase rad)
+
+
+def rippled(path, out, depth, *, mains_hz=50.0):
+    """``path`` with the receiver's gain rippling by ``depth`` (its largest harmonic's share) at the supply's
+    ``mains_hz`` and harmonics (a rectifier's 2nd strongest), the gain ``1 / (1 + 1.6 depth)`` lower to make room:
+    each strong static echo then carries the ripple's Doppler lines about 0 Hz."""
+    gain = 1.0 / (1.0 + 1.6 * depth)
+
+    def change(counts, attrs):
+        t_s = np.arange(counts.shape[0])[:, None] * float(attrs["Tp"])
+        ripple = sum(w * np.cos(2 * np.pi * k * mains_hz * t_s + phase) for k, w, phase in RIPPLE_ORDERS)
+        return gain * counts * (1 + depth * ripple)
+    return _rewritten(path, out, change, gain=gain)
+

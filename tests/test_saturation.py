@@ -34,9 +34,10 @@ def test_a_weak_detection_of_a_clipped_capture_is_an_image_a_strong_one_a_target
     image = out[1]
     assert image["class"] == "none"
     assert {image[key] for key in STATUS_KEYS if key != "snr_db_status"} == {"clipping_image"}
-    kept = STATUS_KEYS + ("n_blades", "n_blades_source", "snr_db")
+    kept = STATUS_KEYS + ("n_blades", "n_blades_source", "snr_db", "mains_hum_hz")
     assert all(image[key] is None for key in FEATURE_KEYS if key not in kept)
     assert image["snr_db"] == 21.0 and image["snr_db_status"] == "ok"  # its own strength stays measured
+    assert image["mains_hum_hz"] == 1.0  # and the hum found in it
     assert image["n_blades"] == 2 and image["n_blades_source"] == "given"  # what the user gave stays
     assert "image of the target at 30 m" in image["notes"] and "read as drone (what made it drone)" in image["notes"]
     assert image["notes"].endswith("; a warning")

@@ -28,7 +28,7 @@ import numpy as np
 
 from mdpipe.errors import ParameterError
 from mdpipe.io.iq import read_iq
-from mdpipe.process import memory, selection
+from mdpipe.process import mains, memory, selection
 from mdpipe.process.cfar import gamma_isf
 from mdpipe.process.classify import classify
 from mdpipe.process.doppler import periodic_hann
@@ -258,6 +258,9 @@ def process_recording(path, process, *, overrides=None, allow_external=False):
     signal = signal - signal.mean()  # static clutter and the radar's own leakage
     if not np.any(np.abs(signal) > 0):
         raise ParameterError(f"{path}: every I/Q sample is the same; the recording holds no signal")
+    hum = mains.find_hum(signal, prf_hz=params.prf_hz, mains_hz=process.mains_frequencies_hz)
+    if hum is not None:  # before the noise is read and anything detected: hum alone is no target
+        signal = mains.without_hum(signal, hum, prf_hz=params.prf_hz)
     profile = noise_profile(signal)
     if profile.coloured:
         signal = whitened(signal, profile)
@@ -267,6 +270,7 @@ def process_recording(path, process, *, overrides=None, allow_external=False):
     row = base_row(path, process, params, n_samples=recording.n_samples, clipped=recording.clipped_fraction,
                    interference=None)
     notes = list(recording.warnings)
+    row["mains_hum_hz"] = None if hum is None else hum.f0_hz
     if profile.coloured:
         notes.append(f"the receiver noise is coloured, {10 * math.log10(profile.spread):.1f} dB from its lowest to its "
                      "highest level across the span (a filter narrower than the sampling, a rise near 0 Hz, or "
@@ -274,11 +278,12 @@ def process_recording(path, process, *, overrides=None, allow_external=False):
     layout = recording.layout.describe()
     if test.score.max() < 1:
         row["notes"] = "; ".join([f"nothing moving above the noise at a false-alarm probability of "
-                                  f"{test.false_alarm_probability:g} per recording ({test.shortfall()})"] + notes)
+                                  f"{test.false_alarm_probability:g} per recording ({test.shortfall()})"]
+                                 + ([hum.note()] if hum is not None else []) + notes)
         return CaptureResult(str(path), params, layout, None, [], [], [row], noise_power=noise, process=process,
                              detection_test=test)
     analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m, noise_power=noise,
-                              params=process, ranged=False)
+                              params=process, ranged=False, hum=hum)
     row.update(target=0, rx_gain_db=gain_db)
     row.update(analysis.row)
     label, reason = classify(row, detected=True)

@@ -13,10 +13,10 @@ import numpy as np
 
 from mdpipe.physics import rotor
 from mdpipe.physics.radar import range_rate_from_doppler_mps
-from mdpipe.process import combs, doppler, spectral
+from mdpipe.process import combs, doppler, mains, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
-from mdpipe.process.filters import least_squares_line, moving_average, running_median
+from mdpipe.process.filters import least_squares_line, moving_average, running_median, triangular_average
 from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period, on_chirp_grid, power_period,
                                     ramp_readable, ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
@@ -93,9 +93,9 @@ FEATURE_GROUPS = {
 }
 VALUE_KEYS = tuple(key for primary, derived in FEATURE_GROUPS.items() for key in (primary, *derived))
 STATUS_KEYS = tuple(f"{key}_status" for key in VALUE_KEYS)
-FEATURE_KEYS = VALUE_KEYS + ("aliased", "n_rotors", "n_blades", "n_blades_source", "stft_window_s", "stft_hop_s") \
-    + STATUS_KEYS
-WITHHELD_KEPT = ("snr_db", "snr_db_status")  # a withheld echo's own strength: measured, whatever made it
+FEATURE_KEYS = VALUE_KEYS + ("aliased", "n_rotors", "n_blades", "n_blades_source", "stft_window_s", "stft_hop_s",
+                             "mains_hum_hz") + STATUS_KEYS
+WITHHELD_KEPT = ("snr_db", "snr_db_status", "mains_hum_hz")  # a withheld echo's own strength and hum: measured
 
 
 def read_as(row):
@@ -327,14 +327,6 @@ def _range_follows(velocity_mps, track):
     return bool(np.isfinite(bound)) and abs(velocity_mps - rate) <= BODY_KEPT_TRACK_BINS * bound
 
 
-def _smoothed(signal, size):
-    """Triangular moving average over ``2 size - 1`` samples (two boxcars), real and imaginary parts, of the
-    samples inside the signal (at its ends, the body's last value repeated would pass for a line)."""
-    def smooth(x):
-        return moving_average(moving_average(x, size, mode="inside"), size, mode="inside")
-    return smooth(signal.real) + 1j * smooth(signal.imag)
-
-
 def static_line(signal, track_hz, *, prf_hz):
     """The line at 0 Hz that the body-demodulated echo would carry as a copy of the body track, mirrored.
 
@@ -353,7 +345,7 @@ def static_line(signal, track_hz, *, prf_hz):
     clear = moving_average(away.astype(float), 2 * size - 1, mode="inside") > 1 - 1e-9  # away over the whole window
     if not clear.any():
         return np.zeros_like(signal)
-    line = _smoothed(np.asarray(signal, dtype=np.complex128), size)
+    line = triangular_average(np.asarray(signal, dtype=np.complex128), size)
     if clear.all():
         return line
     index = np.arange(len(signal))
@@ -451,6 +443,27 @@ def _undersampled(turn, why):
                 "(record at over twice the tips' Doppler)")
         return Measured(measured.value, "undersampled", "; ".join(n for n in (measured.note, note) if n))
     return replace(turn, chopping=caveat(turn.chopping, "chopping frequency"), rate=caveat(turn.rate, "rotation rate"))
+
+
+def _views_without_hum(flash_views, hum, *, prf_hz):
+    """The target's :class:`~mdpipe.process.ranging.FlashViews` (``flash_views()``) with ``hum``'s lines taken out of
+    each column, as out of the echo."""
+    views = flash_views()
+    return replace(views, parts=mains.without_hum(views.parts, hum, prf_hz=prf_hz),
+                   sides=mains.without_hum(views.sides, hum, prf_hz=prf_hz))
+
+
+def _on_hum(turn, hum):
+    """``turn`` (a :class:`Rotation`), withheld (``mains.STATUS``) where its chopping frequency falls on the lines of
+    the mains ``hum`` taken out of the echo: a rotor held still at a multiple of the grid's frequency gives lines
+    that hum gives, and those lines went with the hum."""
+    chop_hz = turn.chopping.value
+    if chop_hz is None or not hum.commensurate(chop_hz):
+        return turn
+    return Rotation.withheld(mains.STATUS, f"rotation not estimable: the chopping frequency read, {chop_hz:.1f} Hz, "
+                             f"falls on the harmonics of the mains hum at {hum.f0_hz:.2f} Hz taken out of the echo, "
+                             "whose lines a rotor held at a multiple of the grid's rate shares (--mains-hz none keeps "
+                             "them)")
 
 
 def _undersampled_wings(measured, why):
@@ -1697,7 +1710,7 @@ def _columns(primary, measured, derived=None):
 
 
 def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=None, flash_views=None,
-                   ramp_share=1.0, ranged=True):
+                   ramp_share=1.0, ranged=True, hum=mains.SEARCH):
     """Measure every feature of one target's complex slow-time ``signal`` (channels combined).
 
     Parameters
@@ -1719,10 +1732,19 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         at its range sides; :func:`mdpipe.process.pipeline.flash_views`), called only where a path reads the echo's
         power period or leaves flash times ambiguous; ``ramp_share``: the sampled part of the ramp's share of the
         chirp period.
+    hum : Hum or None
+        The mains hum the caller took out of ``signal`` already (None: it found none); by default it is looked for
+        here (``params.mains_hz``) and taken out of the echo and its ``flash_views`` (:mod:`mdpipe.process.mains`).
     """
     dwell_s = len(signal) / prf_hz
     s = np.asarray(signal, dtype=np.complex128)
     s = s - s.mean()  # static clutter in this bin
+    if hum is mains.SEARCH:
+        hum = mains.find_hum(s, prf_hz=prf_hz, mains_hz=params.mains_frequencies_hz)
+        if hum is not None:
+            s = mains.without_hum(s, hum, prf_hz=prf_hz)
+            if flash_views is not None:
+                flash_views = functools.cache(functools.partial(_views_without_hum, flash_views, hum, prf_hz=prf_hz))
     moving = float(np.mean(np.abs(s) ** 2))
     snr = (moving - noise_power) / noise_power if noise_power > 0 else np.inf
     snr_db = Measured(float(10 * np.log10(snr))) if snr > 0 else withheld("no_signal", "no power above the noise")
@@ -1748,6 +1770,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                     sides=sides)
     if hidden is not None:
         turn = _undersampled(turn, hidden)
+    if hum is not None:
+        turn = _on_hum(turn, hum)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,
@@ -1804,6 +1828,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         **_columns("wing_stroke_swing", stroke),
         "aliased": bool(band.aliased), "n_rotors": len(turn.rotor_rates_hz) or None,
         "n_blades": turn.n_blades, "n_blades_source": turn.n_blades_source,
+        "mains_hum_hz": None if hum is None else hum.f0_hz,
     }
     window, hop = display_window_s(row, params)
     shown = doppler.spectrogram(s, prf_hz=prf_hz, window_s=window, hop_s=hop)
@@ -1812,6 +1837,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                               flaps, stroke)
              if m.note and (m.status != OK or m is body.velocity or m is turn.rate)]  # (ok: how it was read)
     notes = list(dict.fromkeys(notes))  # one sentence once (blade length and its tip share theirs)
+    if hum is not None:
+        notes.append(hum.note())
     notes.extend(display_adjustments(params, shown, prf_hz=prf_hz, dwell_s=dwell_s))
     # the edges were read about the body line; the figures show the echo as received
     shown_edges = None if edges is None else tuple(e + body_doppler_hz for e in edges)

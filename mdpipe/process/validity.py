@@ -61,6 +61,9 @@ STATUS_CODES = {
     "not_applicable": "not a quantity of this target (e.g. the wingbeat of an echo with blade flashes)",
     "clipping_image": ("the capture clips and this echo is weak enough to be a harmonic or intermodulation image of its "
                        "strongest target (read as `none`)"),
+    "mains_hum": ("the chopping frequency read falls on the harmonics of the mains hum taken out of the echo "
+                  "(`mains_hum_hz`): a rotor held still at a multiple of the grid's rate and hum give the same lines "
+                  "(`--mains-hz none` keeps them)"),
     "interference": ("another radar's chirps cross the capture and this echo's power follows their bursts, or its only "
                      "sign of a rotor is flashes of an ambiguous period, as bursts repeat (read as `none`)"),
 }
