@@ -134,14 +134,16 @@ def test_supply_ripple_on_static_clutter_is_no_drone(tmp_path):
     assert all(r["mains_hum_hz"] == pytest.approx(50.0, abs=0.01) for r in rows if r["target"] is not None)
 
 
-@pytest.mark.parametrize("rate_hz, is_hum", [(100.0, False), (50.0, True)])
-def test_a_rotor_held_still_at_a_multiple_of_the_grid(tmp_path, rate_hz, is_hum):
-    """Paper Table I config 6 (X band, four 2-blade rotors held still, no body): at 100 rev/s its lines every 200 Hz
-    fall on every fourth harmonic of 50 Hz, which hum does not do (the rate within 0.5 %); at 50 rev/s, every 100
-    Hz, they are what a rectifier's ripple gives: taken out as hum, the rotation withheld as `mains_hum`, and read
+@pytest.mark.parametrize("rate_hz, prf_hz, is_hum", [(100.0, 62500.0, False), (50.0, 62500.0, False),
+                                                   (50.0, 4000.0, True)])
+def test_a_rotor_held_still_at_a_multiple_of_the_grid(tmp_path, rate_hz, prf_hz, is_hum):
+    """Paper Table I config 6 (X band, four 2-blade rotors held still, no body), 0.26-1 s: at 100 rev/s its lines
+    every 200 Hz fall on every fourth harmonic of 50 Hz, which hum does not do; at 50 rev/s, every 100 Hz, as a
+    rectifier's ripple, but they go on beyond hum's 40 orders (to its tips' 3.3 kHz): no hum, the rate within 0.5 %.
+    Sampled at 4 kHz the span ends before the 40th order: taken for hum (a drone still, its rotation lost), and read
     within 0.5 % with `--mains-hz none`."""
     mapping = load_scene_mapping(ROOT / "configs" / "paper" / "table1_config6.yaml")
-    mapping["radar"]["n_chirps"] = 16000
+    mapping["radar"].update(n_chirps=int(min(16000, prf_hz)), chirp_period_s=1.0 / prf_hz)
     mapping["targets"][0]["rotors"]["rev_per_s"] = [rate_hz, -rate_hz, rate_hz, -rate_hz]
     path, truth = simulate(tmp_path, mapping)
     row = process_capture(path, ProcessParams()).rows[0]
@@ -151,6 +153,6 @@ def test_a_rotor_held_still_at_a_multiple_of_the_grid(tmp_path, rate_hz, is_hum)
         assert row["rotation_rate_hz"] == pytest.approx(rate_hz, rel=0.005)
         return
     assert row["mains_hum_hz"] == pytest.approx(50.0, abs=0.01)
-    assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == mains.STATUS
+    assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] != "ok"
     row = process_capture(path, ProcessParams(mains_hz="none")).rows[0]
     assert row["mains_hum_hz"] is None and row["rotation_rate_hz"] == pytest.approx(rate_hz, rel=0.005)

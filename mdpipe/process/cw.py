@@ -258,9 +258,8 @@ def process_recording(path, process, *, overrides=None, allow_external=False):
     signal = signal - signal.mean()  # static clutter and the radar's own leakage
     if not np.any(np.abs(signal) > 0):
         raise ParameterError(f"{path}: every I/Q sample is the same; the recording holds no signal")
-    hum = mains.find_hum(signal, prf_hz=params.prf_hz, mains_hz=process.mains_frequencies_hz)
-    if hum is not None:  # before the noise is read and anything detected: hum alone is no target
-        signal = mains.without_hum(signal, hum, prf_hz=params.prf_hz)
+    # before the noise is read and anything detected: hum alone is no target
+    signal, hum = mains.taken_out(signal, prf_hz=params.prf_hz, mains_hz=process.mains_frequencies_hz)
     profile = noise_profile(signal)
     if profile.coloured:
         signal = whitened(signal, profile)

@@ -453,17 +453,18 @@ def _views_without_hum(flash_views, hum, *, prf_hz):
                    sides=mains.without_hum(views.sides, hum, prf_hz=prf_hz))
 
 
-def _on_hum(turn, hum):
-    """``turn`` (a :class:`Rotation`), withheld (``mains.STATUS``) where its chopping frequency falls on the lines of
-    the mains ``hum`` taken out of the echo: a rotor held still at a multiple of the grid's frequency gives lines
-    that hum gives, and those lines went with the hum."""
+def _on_hum(turn, hum, *, body_hz):
+    """``turn`` (a :class:`Rotation`), withheld (``mains.STATUS``) where its chopping comb, lines at ``body_hz`` plus
+    its multiples, fell on the notches that took the mains ``hum`` out (:meth:`mains.Hum.covers`): a rotor held
+    still at a multiple of the grid's rate gives the lines hum gives, and the lines that told it went with the
+    hum."""
     chop_hz = turn.chopping.value
-    if chop_hz is None or not hum.commensurate(chop_hz):
+    if chop_hz is None or not hum.covers(body_hz, chop_hz):
         return turn
-    return Rotation.withheld(mains.STATUS, f"rotation not estimable: the chopping frequency read, {chop_hz:.1f} Hz, "
-                             f"falls on the harmonics of the mains hum at {hum.f0_hz:.2f} Hz taken out of the echo, "
-                             "whose lines a rotor held at a multiple of the grid's rate shares (--mains-hz none keeps "
-                             "them)")
+    return Rotation.withheld(mains.STATUS, f"rotation not estimable: the lines of the chopping frequency read, "
+                             f"{chop_hz:.1f} Hz, fell on the harmonics of the mains hum at {hum.f0_hz:.2f} Hz taken "
+                             "out of the echo (a rotor held at a multiple of the grid's rate shares them; "
+                             "--mains-hz none keeps them)")
 
 
 def _undersampled_wings(measured, why):
@@ -1740,11 +1741,9 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     s = np.asarray(signal, dtype=np.complex128)
     s = s - s.mean()  # static clutter in this bin
     if hum is mains.SEARCH:
-        hum = mains.find_hum(s, prf_hz=prf_hz, mains_hz=params.mains_frequencies_hz)
-        if hum is not None:
-            s = mains.without_hum(s, hum, prf_hz=prf_hz)
-            if flash_views is not None:
-                flash_views = functools.cache(functools.partial(_views_without_hum, flash_views, hum, prf_hz=prf_hz))
+        s, hum = mains.taken_out(s, prf_hz=prf_hz, mains_hz=params.mains_frequencies_hz)
+        if hum is not None and flash_views is not None:
+            flash_views = functools.cache(functools.partial(_views_without_hum, flash_views, hum, prf_hz=prf_hz))
     moving = float(np.mean(np.abs(s) ** 2))
     snr = (moving - noise_power) / noise_power if noise_power > 0 else np.inf
     snr_db = Measured(float(10 * np.log10(snr))) if snr > 0 else withheld("no_signal", "no power above the noise")
@@ -1771,7 +1770,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     if hidden is not None:
         turn = _undersampled(turn, hidden)
     if hum is not None:
-        turn = _on_hum(turn, hum)
+        turn = _on_hum(turn, hum, body_hz=body_doppler_hz)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,

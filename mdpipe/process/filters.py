@@ -36,14 +36,15 @@ def moving_average(x, size, *, mode="nearest", axis=-1):
     return np.moveaxis((total[..., size:] - total[..., :-size]) / size, -1, axis)
 
 
-def triangular_average(signal, size):
-    """Triangular moving average over ``2 size - 1`` samples (two boxcars of ``size``), real and imaginary parts,
-    of the samples inside the signal (``mode="inside"``: at its ends, an edge value repeated would pass for a
-    line). A constant passes unchanged; its frequency response's first null lies at ``1 / size`` cycles a sample."""
+def triangular_average(signal, size, *, axis=-1):
+    """Triangular moving average over ``2 size - 1`` samples (two boxcars of ``size``) along ``axis``, real and
+    imaginary parts, of the samples inside the signal (``mode="inside"``: at its ends, an edge value repeated would
+    pass for a line). A constant passes unchanged; its frequency response's first null lies at ``1 / size`` cycles a
+    sample."""
     signal = np.asarray(signal)
 
     def smooth(x):
-        return moving_average(moving_average(x, size, mode="inside"), size, mode="inside")
+        return moving_average(moving_average(x, size, mode="inside", axis=axis), size, mode="inside", axis=axis)
     if not np.iscomplexobj(signal):
         return smooth(signal)
     return smooth(signal.real) + 1j * smooth(signal.imag)

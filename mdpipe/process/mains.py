@@ -9,9 +9,11 @@ ride on its body's Doppler. Read as an echo they are a line comb (mains hum 10 d
 recording read as a drone at 50 rev/s, ``ok``) or, weak, wings beating.
 
 :func:`find_hum` reads them on the echo as received (not demodulated by any body track), :func:`without_hum`
-takes them out by a notch that follows the hum's slow drift. A rotor turning at a multiple of the grid's
-frequency and held still (a test stand at 3000 rpm under a 50 Hz grid) gives the same sharp lines: its comb
-is taken out with the hum; the row then says so (:data:`STATUS`), and ``--mains-hz none`` skips the search.
+takes them out by notches. A rotor turning at a multiple of the grid's frequency and held still (a test stand at
+3000 rpm under a 50 Hz grid) gives sharp lines at the same orders, but its comb runs on beyond hum's harmonics
+(across its tips' Doppler, folded over the span): where the span shows the orders beyond ``MAX_ORDERS`` and the
+lines go on there, they are no hum. Where it does not, the comb is taken for hum and out with it; a chopping
+comb read on those lines after all is withheld (:data:`STATUS`), and ``--mains-hz none`` skips the search.
 """
 
 from dataclasses import dataclass
@@ -23,40 +25,55 @@ from mdpipe.process.filters import parabolic_offset, triangular_average
 
 GRID_TOLERANCE = 0.01    # the grid's frequency within 1 % of its nominal
 FIRST_ORDERS = 2         # the frequency is read on lines at the first two orders (a rectifier's ripple: the 2nd)
-MAX_ORDERS = 40          # hum harmonics searched up to this order
+MAX_ORDERS = 40          # hum harmonics searched up to this order (2 kHz at 50 Hz) ...
+CONTINUES_SHARE = 0.5    # ... and a comb whose lines go on beyond it this densely, a share of its upper half's, no hum
 LINE_RATIO = 30.0        # a hum line's bin over the spectrum's local median (noise passes it w.p. 2^-30)
 SHARP_BINS = 3           # ... and sharp: this many resolution bins either side of it, under BESIDE_SHARE of it
 BESIDE_SHARE = 0.1       # (a line smeared over a few bins by a body's sway or a rotor's wander holds a third)
 BESIDE_NOISE = 8.0       # ... or no more than noise reaches there (8 times its median: w.p. 2^-8)
 FLOOR_HZ = 25.0          # the local median is taken over +-this about each order
 DRIFT = 2e-4             # the grid's frequency moves about 0.01 Hz over a recording: order k within k times this
+WANDER = 2e-3            # ... and, once hum is found, its orders taken out within k times this, smeared or not
 MIN_LINES = 3
-CHANCE_SIGMAS = 3.0      # hum's lines outnumber those half-way between its orders (other lines met by chance) by
-                         # MIN_LINES and this many Poisson deviations of their count
+CHANCE_OFFSETS = (1 / 3, 1 / 2, 2 / 3)  # hum's lines outnumber those at these fractions between its orders (other
+CHANCE_SIGMAS = 3.0      # lines met by chance) by MIN_LINES and this many Poisson deviations of the most of them
 MAX_LINE_STEP = 2        # hum's lines lie at every order, or (a rectifier's ripple) every second one
-MIN_CYCLES = 10          # a dwell of at least 10 periods of the grid (0.2 s at 50 Hz): lines resolved apart
-NOTCH_BINS = 4           # the notch: each line's envelope averaged over a quarter of the dwell (first null 4 bins)
-PAD = 2
-STATUS = "mains_hum"     # a chopping comb commensurate with the hum removed: withheld
+MIN_CYCLES = 25          # a dwell of at least 25 periods of the grid (0.5 s at 50 Hz): notches a share of the span
+NOTCH_S = 1.0            # each line's envelope averaged over this (or the dwell): first null max(2 Hz, 2 bins) off
+PAD = 2                  # zero-padding of the spectrum lines are read on
+TRACK_S = 0.1            # the strongest line's phase followed over this (10 Hz: its wander, under its neighbours)
+PASSES = 3               # hum searched again in what its notches leave, up to this many times
+STATUS = "mains_hum"     # a chopping comb on the hum's lines taken out: withheld
 SEARCH = object()        # analyse_target's default: look for hum in the echo (a caller may have taken it out)
+
+
+def notch_boxcar(n, prf_hz):
+    """Samples of each of the two boxcars that average a hum line's envelope: half the dwell, at most
+    ``NOTCH_S / 2``."""
+    return max(1, min(n // 2, int(round(NOTCH_S * prf_hz / 2))))
 
 
 @dataclass(frozen=True)
 class Hum:
-    """Mains hum found in an echo: the grid frequency ``f0_hz`` and its lines (signed order, frequency Hz)."""
+    """Mains hum found in an echo: the grid frequency ``f0_hz``, its lines ((signed order, Hz), strongest first)
+    and the notches' half-width (Hz: their first null)."""
 
     f0_hz: float
     lines: tuple
+    notch_hz: float
 
     def note(self):
         return (f"mains hum at {self.f0_hz:.2f} Hz: {len(self.lines)} lines at its harmonics taken out before the "
                 f"analysis (--mains-hz none keeps them)")
 
-    def commensurate(self, spacing_hz):
-        """Whether a comb at ``spacing_hz`` falls on the hum's lines: a whole multiple of ``f0_hz`` or of half of
-        it, within the resolution the comb is read to (``GRID_TOLERANCE`` of the spacing)."""
-        ratio = 2.0 * spacing_hz / self.f0_hz
-        return bool(round(ratio) >= 1 and abs(ratio - round(ratio)) <= GRID_TOLERANCE * ratio)
+    def covers(self, body_hz, spacing_hz, orders=8):
+        """Whether a comb of lines at ``body_hz + k spacing_hz`` (k = +-1..+-``orders``) fell, half of them or
+        more, within the notches taken out."""
+        taken = np.array([f for _, f in self.lines])
+        k = np.concatenate([np.arange(1, orders + 1), -np.arange(1, orders + 1)])
+        positions = body_hz + k * spacing_hz
+        near = np.min(np.abs(positions[:, None] - taken[None, :]), axis=1) < self.notch_hz
+        return bool(np.mean(near) >= 0.5)
 
 
 class _Spectrum:
@@ -71,9 +88,9 @@ class _Spectrum:
     def _bins(self, low_hz, high_hz):
         return np.arange(int(np.floor(low_hz / self.bin_hz)), int(np.ceil(high_hz / self.bin_hz)) + 1)
 
-    def line(self, low_hz, high_hz, floor_centre_hz):
-        """The line (frequency Hz) standing in ``[low_hz, high_hz]``: the strongest bin there, refined by a parabola
-        through its log-power neighbours, if it stands ``LINE_RATIO`` over the local median and is sharp; else
+    def line(self, low_hz, high_hz, floor_centre_hz, *, sharp=True):
+        """The line standing in ``[low_hz, high_hz]``, (Hz, power): the strongest bin there, refined by a parabola
+        through its log-power neighbours, if it stands ``LINE_RATIO`` over the local median and is ``sharp``; else
         None."""
         m = len(self.power)
         window = self._bins(low_hz, high_hz)
@@ -83,33 +100,38 @@ class _Spectrum:
         if value < LINE_RATIO * floor:
             return None
         beside = int(round(SHARP_BINS * self.resolution_hz / self.bin_hz))
-        for side in (peak - beside, peak + beside):
+        for side in (peak - beside, peak + beside) if sharp else ():
             if self.power[side % m] > max(BESIDE_SHARE * value, BESIDE_NOISE * floor):
                 return None
         left, mid, right = np.log(self.power[[(peak - 1) % m, peak % m, (peak + 1) % m]] + np.finfo(float).tiny)
-        return (peak + float(parabolic_offset(left, mid, right))) * self.bin_hz
+        return (peak + float(parabolic_offset(left, mid, right))) * self.bin_hz, float(value)
 
 
 def _fitted(lines):
-    """The frequency whose multiples the ``lines`` ((order, Hz), ...) lie on: least squares through 0."""
-    k, f = np.array(lines, dtype=float).T
+    """The frequency whose multiples the ``lines`` ((order, Hz, power), ...) lie on: least squares through 0."""
+    k, f = np.array([line[:2] for line in lines], dtype=float).T
     return float(np.sum(k * f) / np.sum(k * k))
 
 
-def _lines_at(spectrum, f0_hz, orders):
-    """(order, Hz) of the lines standing at ``+-orders`` (may be fractional) times ``f0_hz``, each within half a
-    resolution bin and the grid's drift of it."""
+def _lines_at(spectrum, f0_hz, orders, *, drift=DRIFT, sharp=True):
+    """(order, Hz, power) of the lines standing at ``+-orders`` (may be fractional) times ``f0_hz``, each within half
+    a resolution bin and the grid's ``drift`` of it (and ``sharp``)."""
     found = []
     for k in np.concatenate([orders, -orders]):
-        reach = spectrum.resolution_hz / 2 + abs(k) * DRIFT * f0_hz
-        f = spectrum.line(k * f0_hz - reach, k * f0_hz + reach, k * f0_hz)
-        if f is not None:
-            found.append((float(k), f))
+        reach = spectrum.resolution_hz / 2 + abs(k) * drift * f0_hz
+        line = spectrum.line(k * f0_hz - reach, k * f0_hz + reach, k * f0_hz, sharp=sharp)
+        if line is not None:
+            found.append((float(k), *line))
     return found
 
 
 def _consistent(lines, f0_hz, resolution_hz):
-    return [(k, f) for k, f in lines if abs(f - k * f0_hz) <= resolution_hz / 2 + abs(k) * DRIFT * f0_hz]
+    return [line for line in lines if abs(line[1] - line[0] * f0_hz) <= resolution_hz / 2 + abs(line[0]) * DRIFT * f0_hz]
+
+
+def _top_order(prf_hz, f0_hz):
+    """The highest order whose line and local floor lie inside the span."""
+    return int(np.floor((prf_hz / 2 - FLOOR_HZ) / (f0_hz * (1 + GRID_TOLERANCE))))
 
 
 def find_hum(signal, *, prf_hz, mains_hz):
@@ -121,58 +143,104 @@ def find_hum(signal, *, prf_hz, mains_hz):
     ``+-k`` up to ``MAX_ORDERS`` (and the span's edge) within half a resolution bin and the grid's drift of ``k f0``.
     Hum when f0, refitted on them, stays within ``GRID_TOLERANCE`` of F, and they are ``MIN_LINES`` or more, at
     orders whose greatest common divisor is at most ``MAX_LINE_STEP`` (the grid's harmonics, or a rectifier's ripple
-    at the even ones: a rotor held still at 100 rev/s, 2 blades, lines every 200 Hz, is no hum; one at 50 rev/s,
-    every 100 Hz, reads as hum), and more than the lines standing half-way between the orders, which a spectrum
-    dense with a target's lines meets as often (``CHANCE_SIGMAS``: hexarotors at 77 GHz, their folded combs sharp,
-    met 3-14 orders of 50-60 Hz by chance). A dwell shorter than ``MIN_CYCLES`` periods is not searched.
+    at the even ones: a rotor of equal blades held still at 100 rev/s, lines every 200 Hz, is no hum), more than the
+    lines standing at fractions between the orders, which a spectrum dense with a target's lines meets as often
+    (``CHANCE_OFFSETS``: hexarotors at 77 GHz, their folded combs sharp, met 3-14 orders of 50-60 Hz by chance), and
+    they do not go on beyond ``MAX_ORDERS`` (``CONTINUES_SHARE``) where the span shows orders there: a rotor's comb,
+    held still at a multiple of the grid's rate, spans its tips' Doppler (one at 60.3 rev/s, its blades unequal, at
+    77 GHz, read as hum and lost as a drone). A dwell shorter than ``MIN_CYCLES`` periods is not searched.
     """
     signal = np.asarray(signal, dtype=np.complex128)
     n = len(signal)
     best, spectrum = None, None
     for nominal_hz in mains_hz:
-        top = int(min(MAX_ORDERS, np.floor(prf_hz / 2 / (nominal_hz * (1 + GRID_TOLERANCE) + FLOOR_HZ))))
-        if top < 1 or n / prf_hz < MIN_CYCLES / nominal_hz:
+        top = min(MAX_ORDERS, _top_order(prf_hz, nominal_hz))
+        if top < MIN_LINES or n / prf_hz < MIN_CYCLES / nominal_hz:
             continue
         spectrum = spectrum or _Spectrum(signal, prf_hz)
         first = []
-        for k in [s * k for k in range(1, min(FIRST_ORDERS, top) + 1) for s in (1, -1)]:
+        for k in [s * k for k in range(1, FIRST_ORDERS + 1) for s in (1, -1)]:
             reach = abs(k) * nominal_hz * GRID_TOLERANCE
-            f = spectrum.line(k * nominal_hz - reach, k * nominal_hz + reach, k * nominal_hz)
-            if f is not None:
-                first.append((k, f))
+            line = spectrum.line(k * nominal_hz - reach, k * nominal_hz + reach, k * nominal_hz)
+            if line is not None:
+                first.append((k, *line))
+        first = _consistent(first, _fitted(first), spectrum.resolution_hz) if len(first) >= 2 else []
         if len(first) < 2:
             continue
-        f0 = _fitted(first)
-        first = _consistent(first, f0, spectrum.resolution_hz)
-        if len(first) < 2:
-            continue
-        f0 = _fitted(first)
-        lines = _lines_at(spectrum, f0, np.arange(1, top + 1))
+        lines = _lines_at(spectrum, _fitted(first), np.arange(1, top + 1))
         lines = _consistent(lines, _fitted(lines), spectrum.resolution_hz) if len(lines) >= MIN_LINES else []
         if len(lines) < MIN_LINES:
             continue
         f0 = _fitted(lines)
-        chance = len(_lines_at(spectrum, f0, np.arange(top) + 0.5))  # a dense spectrum's lines, met anywhere
-        if (abs(f0 / nominal_hz - 1) > GRID_TOLERANCE or np.gcd.reduce([int(round(abs(k))) for k, _ in lines]) > MAX_LINE_STEP
-                or len(lines) < MIN_LINES + chance + CHANCE_SIGMAS * np.sqrt(chance)):
-            continue  # (lines every third order or wider: a rotor's comb, 200 Hz at 100 rev/s and 2 blades, no hum)
+        chance = max(len(_lines_at(spectrum, f0, np.arange(top) + offset)) for offset in CHANCE_OFFSETS)
+        if (abs(f0 / nominal_hz - 1) > GRID_TOLERANCE or np.gcd.reduce([int(round(abs(line[0]))) for line in lines])
+                > MAX_LINE_STEP or len(lines) < MIN_LINES + chance + CHANCE_SIGMAS * np.sqrt(chance)
+                or _goes_on(spectrum, f0, lines, top)):
+            continue
         if best is None or len(lines) > len(best.lines):
-            best = Hum(f0_hz=f0, lines=tuple(lines))
+            # taken out: every order standing out, smeared or not (a line's wander smears it k times at order k)
+            drifting = {k: (k, f, p) for k, f, p in _lines_at(spectrum, f0, np.arange(1, top + 1), drift=WANDER,
+                                                               sharp=False)}
+            lines = sorted({**drifting, **{line[0]: line for line in lines}}.values(), key=lambda line: -line[2])
+            best = Hum(f0_hz=f0, lines=tuple((k, f) for k, f, _ in lines),
+                       notch_hz=prf_hz / notch_boxcar(n, prf_hz))
     return best
 
 
+def _goes_on(spectrum, f0_hz, lines, top):
+    """Whether the comb of ``lines`` (orders up to ``top``) goes on beyond ``MAX_ORDERS`` as densely as
+    ``CONTINUES_SHARE`` of its upper half, where the span shows ``MIN_LINES`` orders there or more."""
+    beyond = np.arange(MAX_ORDERS + 1, min(2 * MAX_ORDERS, _top_order(spectrum.prf_hz, f0_hz)) + 1)
+    if top < MAX_ORDERS or len(beyond) < MIN_LINES:
+        return False
+    upper = sum(abs(line[0]) > MAX_ORDERS / 2 for line in lines) / (MAX_ORDERS - MAX_ORDERS // 2)
+    return len(_lines_at(spectrum, f0_hz, beyond)) / len(beyond) >= max(CONTINUES_SHARE * upper, 1e-9) \
+        and len(_lines_at(spectrum, f0_hz, beyond)) >= MIN_LINES
+
+
 def without_hum(signal, hum, *, prf_hz):
-    """``signal`` (n,) or (n, columns) with each of ``hum``'s lines notched out: the echo demodulated at the line,
-    its envelope averaged over a quarter of the dwell (triangular: first null ``NOTCH_BINS`` resolution bins
-    off the line), remodulated and subtracted. A steady line goes whole (the average holds a constant); one
-    drifting within the notch goes too; the echo more than a few bins off the line stays."""
+    """``signal`` (n,) or (n, columns) with each of ``hum``'s lines notched out, strongest first (a weaker line's
+    envelope is then not read through a stronger one's): the echo demodulated at the line, its envelope averaged
+    over ``NOTCH_S`` (or the dwell; triangular, first null ``hum.notch_hz`` off the line), remodulated and
+    subtracted. A steady line goes whole; a tone a quarter and half the notch's half-width off the line keeps 5-8
+    and 36 % of its power, one a half-width off or more 91 % or more. The grid's frequency wanders (0.01-0.05 Hz over
+    seconds, k times that at order k): the lines are also taken out along the strongest one's phase, followed over
+    ``TRACK_S`` and scaled to each order, and of the two the echo left weaker is kept (hum drifting 50.00 to 50.05
+    Hz over 10 s read as a drone, its residue 16 dB under it, with the fixed lines alone)."""
     out = np.array(signal, dtype=np.complex128)
     n = out.shape[0]
-    size = max(1, n // (2 * NOTCH_BINS))  # two boxcars of n / 8: the triangle spans a quarter of the dwell
     t = np.arange(n) / prf_hz
-    for _, f_hz in hum.lines:
-        carrier = np.exp(2j * np.pi * f_hz * t).reshape((n,) + (1,) * (out.ndim - 1))
-        envelope = out * np.conj(carrier)
-        smoothed = np.stack([triangular_average(c, size) for c in envelope.reshape(n, -1).T], axis=1)
-        out -= smoothed.reshape(out.shape) * carrier
+    k_strong, f_strong = hum.lines[0]
+    steady = _notched(out, hum, 2 * np.pi * np.outer(t, [f for _, f in hum.lines]), prf_hz=prf_hz)
+    envelope = triangular_average(out.reshape(n, -1).sum(axis=1) * np.exp(-2j * np.pi * f_strong * t),
+                                  max(1, int(round(TRACK_S * prf_hz / 2))))
+    wander = np.unwrap(np.angle(envelope))
+    phases = 2 * np.pi * np.outer(t, [f for _, f in hum.lines]) + np.outer(wander - wander.mean(),
+                                                                            [k / k_strong for k, _ in hum.lines])
+    followed = _notched(out, hum, phases, prf_hz=prf_hz)
+    return steady if np.mean(np.abs(steady) ** 2) <= np.mean(np.abs(followed) ** 2) else followed
+
+
+def _notched(out, hum, phases, *, prf_hz):
+    """``out`` less each line of ``hum`` along its phase (a column of ``phases``, rad, one row a sample)."""
+    out = out.copy()
+    n = out.shape[0]
+    size = notch_boxcar(n, prf_hz)
+    for column in range(len(hum.lines)):
+        carrier = np.exp(1j * phases[:, column]).reshape((n,) + (1,) * (out.ndim - 1))
+        out -= triangular_average(out * np.conj(carrier), size, axis=0) * carrier
     return out
+
+
+def taken_out(signal, *, prf_hz, mains_hz):
+    """(``signal`` with its mains hum taken out, the :class:`Hum` or None): searched again in what the notches
+    leave, up to ``PASSES`` times (a strong line's residue at the dwell's ends, where its envelope is averaged over
+    half the span), the lines of every pass in the one :class:`Hum` returned."""
+    found = None
+    for _ in range(PASSES):
+        hum = find_hum(signal, prf_hz=prf_hz, mains_hz=mains_hz)
+        if hum is None:
+            break
+        signal = without_hum(signal, hum, prf_hz=prf_hz)
+        found = hum if found is None else Hum(found.f0_hz, found.lines + hum.lines, found.notch_hz)
+    return signal, found
