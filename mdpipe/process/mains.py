@@ -41,7 +41,7 @@ MAX_LINE_STEP = 2        # hum's lines lie at every order, or (a rectifier's rip
 MIN_CYCLES = 25          # a dwell of at least 25 periods of the grid (0.5 s at 50 Hz): notches a share of the span
 NOTCH_S = 1.0            # each line's envelope averaged over this (or the dwell): first null max(2 Hz, 2 bins) off
 PAD = 2                  # zero-padding of the spectrum lines are read on
-TRACK_S = 0.1            # the strongest line's phase followed over this (10 Hz: its wander, under its neighbours)
+TRACK_S = 1.0            # the strongest line's phase followed over this (its wander, within about 1 Hz of it)
 PASSES = 3               # hum searched again in what its notches leave, up to this many times
 STATUS = "mains_hum"     # a chopping comb on the hum's lines taken out: withheld
 SEARCH = object()        # analyse_target's default: look for hum in the echo (a caller may have taken it out)
@@ -203,32 +203,48 @@ def without_hum(signal, hum, *, prf_hz):
     envelope is then not read through a stronger one's): the echo demodulated at the line, its envelope averaged
     over ``NOTCH_S`` (or the dwell; triangular, first null ``hum.notch_hz`` off the line), remodulated and
     subtracted. A steady line goes whole; a tone a quarter and half the notch's half-width off the line keeps 5-8
-    and 36 % of its power, one a half-width off or more 91 % or more. The grid's frequency wanders (0.01-0.05 Hz over
+    and 36 % of its power, one a half-width off or more 91 % or more (dwells of up to two ``TRACK_S``; on longer ones
+    a tone within about 1 Hz of the strongest line, which hum's own line outshines there, is followed with it). The grid's frequency wanders (0.01-0.05 Hz over
     seconds, k times that at order k): the lines are also taken out along the strongest one's phase, followed over
     ``TRACK_S`` and scaled to each order, and of the two the echo left weaker is kept (hum drifting 50.00 to 50.05
-    Hz over 10 s read as a drone, its residue 16 dB under it, with the fixed lines alone)."""
+    Hz over 10 s read as a drone, its residue 16 dB under it, with the fixed lines alone); the dwell must hold two
+    ``TRACK_S``."""
     out = np.array(signal, dtype=np.complex128)
     n = out.shape[0]
     t = np.arange(n) / prf_hz
+    steady = _notched(out, hum, prf_hz=prf_hz)
+    if n / prf_hz <= 2 * TRACK_S:
+        return steady  # (no wander to follow within the dwell)
     k_strong, f_strong = hum.lines[0]
-    steady = _notched(out, hum, 2 * np.pi * np.outer(t, [f for _, f in hum.lines]), prf_hz=prf_hz)
     envelope = triangular_average(out.reshape(n, -1).sum(axis=1) * np.exp(-2j * np.pi * f_strong * t),
                                   max(1, int(round(TRACK_S * prf_hz / 2))))
     wander = np.unwrap(np.angle(envelope))
-    phases = 2 * np.pi * np.outer(t, [f for _, f in hum.lines]) + np.outer(wander - wander.mean(),
-                                                                            [k / k_strong for k, _ in hum.lines])
-    followed = _notched(out, hum, phases, prf_hz=prf_hz)
+    followed = _notched(out, hum, prf_hz=prf_hz, wander=(wander - wander.mean()) / k_strong)
     return steady if np.mean(np.abs(steady) ** 2) <= np.mean(np.abs(followed) ** 2) else followed
 
 
-def _notched(out, hum, phases, *, prf_hz):
-    """``out`` less each line of ``hum`` along its phase (a column of ``phases``, rad, one row a sample)."""
+def _notched(out, hum, *, prf_hz, wander=None):
+    """``out`` less each line of ``hum`` (order k, frequency f) along its phase ``2 pi f t + k wander(t)`` (``wander``:
+    the grid's phase wander per order, rad, a value a sample; None: steady). Each line's envelope is averaged on
+    blocks of an eighth of the grid's period (at most a sixteenth of the notch's boxcar), then brought back to every
+    sample (linearly): a few passes over the echo a line."""
     out = out.copy()
     n = out.shape[0]
     size = notch_boxcar(n, prf_hz)
-    for column in range(len(hum.lines)):
-        carrier = np.exp(1j * phases[:, column]).reshape((n,) + (1,) * (out.ndim - 1))
-        out -= triangular_average(out * np.conj(carrier), size, axis=0) * carrier
+    block = max(1, min(size // 16, int(prf_hz / (8 * hum.f0_hz))))  # (its neighbours, f0 away, sampled 8 times a turn)
+    edges = np.arange(0, n, block)
+    centres = np.minimum(edges + (block - 1) / 2, (edges + n - 1) / 2)  # a short last block's centre
+    t = np.arange(n) / prf_hz
+    index = np.arange(n)
+    for k, f_hz in hum.lines:
+        phase = 2 * np.pi * f_hz * t if wander is None else 2 * np.pi * f_hz * t + k * wander
+        carrier = np.exp(1j * phase).reshape((n,) + (1,) * (out.ndim - 1))
+        blocks = np.add.reduceat(out * np.conj(carrier), edges, axis=0) / np.diff(np.append(edges, n)).reshape(
+            (-1,) + (1,) * (out.ndim - 1))
+        smooth = triangular_average(blocks, max(1, size // block), axis=0).reshape(len(edges), -1)
+        level = np.stack([np.interp(index, centres, c.real) + 1j * np.interp(index, centres, c.imag)
+                          for c in smooth.T], axis=1).reshape(out.shape)
+        out -= level * carrier
     return out
 
 
