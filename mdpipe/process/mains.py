@@ -34,10 +34,12 @@ BESIDE_NOISE = 8.0       # ... or no more than noise reaches there (8 times its 
 FLOOR_HZ = 25.0          # the local median is taken over +-this about each order
 DRIFT = 2e-4             # the grid's frequency moves about 0.01 Hz over a recording: order k within k times this
 WANDER = 2e-3            # ... and, once hum is found, its orders taken out within k times this, smeared or not
-MIN_LINES = 3
+MIN_LINES = 6            # (a hexarotor near 60 rev/s met 3 orders of 60.2 Hz, sharp and on them, by chance)
 CHANCE_OFFSETS = (1 / 3, 1 / 2, 2 / 3)  # hum's lines outnumber those at these fractions between its orders (other
 CHANCE_SIGMAS = 3.0      # lines met by chance) by MIN_LINES and this many Poisson deviations of the most of them
 MAX_LINE_STEP = 2        # hum's lines lie at every order, or (a rectifier's ripple) every second one
+MAX_OFF = 0.25           # ... on them: their median offset from k f0 this share of the reach allowed (lines met by
+                         # chance within it: about half; hum's 0.001-0.1, drifting 0.2 Hz over 10 s included)
 MIN_CYCLES = 25          # a dwell of at least 25 periods of the grid (0.5 s at 50 Hz): notches a share of the span
 NOTCH_S = 1.0            # each line's envelope averaged over this (or the dwell): first null max(2 Hz, 2 bins) off
 PAD = 2                  # zero-padding of the spectrum lines are read on
@@ -126,7 +128,8 @@ def _lines_at(spectrum, f0_hz, orders, *, drift=DRIFT, sharp=True):
 
 
 def _consistent(lines, f0_hz, resolution_hz):
-    return [line for line in lines if abs(line[1] - line[0] * f0_hz) <= resolution_hz / 2 + abs(line[0]) * DRIFT * f0_hz]
+    return [line for line in lines
+            if abs(line[1] - line[0] * f0_hz) <= resolution_hz / 2 + abs(line[0]) * DRIFT * f0_hz]
 
 
 def _top_order(prf_hz, f0_hz):
@@ -146,7 +149,9 @@ def find_hum(signal, *, prf_hz, mains_hz):
     at the even ones: a rotor of equal blades held still at 100 rev/s, lines every 200 Hz, is no hum), more than the
     lines standing at fractions between the orders, which a spectrum dense with a target's lines meets as often
     (``CHANCE_OFFSETS``: hexarotors at 77 GHz, their folded combs sharp, met 3-14 orders of 50-60 Hz by chance), and
-    they do not go on beyond ``MAX_ORDERS`` (``CONTINUES_SHARE``) where the span shows orders there: a rotor's comb,
+    they lie on the orders (``MAX_OFF``: a hexarotor's rotors 1-2 % apart about 60 rev/s met 24 orders of 60.2 Hz,
+    each line somewhere within the reach allowed), and they do not go on beyond ``MAX_ORDERS``
+    (``CONTINUES_SHARE``) where the span shows orders there: a rotor's comb,
     held still at a multiple of the grid's rate, spans its tips' Doppler (one at 60.3 rev/s, its blades unequal, at
     77 GHz, read as hum and lost as a drone). A dwell shorter than ``MIN_CYCLES`` periods is not searched.
     """
@@ -173,9 +178,10 @@ def find_hum(signal, *, prf_hz, mains_hz):
             continue
         f0 = _fitted(lines)
         chance = max(len(_lines_at(spectrum, f0, np.arange(top) + offset)) for offset in CHANCE_OFFSETS)
+        off = np.median([abs(f - k * f0) / (spectrum.resolution_hz / 2 + abs(k) * DRIFT * f0) for k, f, _ in lines])
         if (abs(f0 / nominal_hz - 1) > GRID_TOLERANCE or np.gcd.reduce([int(round(abs(line[0]))) for line in lines])
                 > MAX_LINE_STEP or len(lines) < MIN_LINES + chance + CHANCE_SIGMAS * np.sqrt(chance)
-                or _goes_on(spectrum, f0, lines, top)):
+                or off > MAX_OFF or _goes_on(spectrum, f0, lines, top)):
             continue
         if best is None or len(lines) > len(best.lines):
             # taken out: every order standing out, smeared or not (a line's wander smears it k times at order k)
@@ -203,12 +209,12 @@ def without_hum(signal, hum, *, prf_hz):
     envelope is then not read through a stronger one's): the echo demodulated at the line, its envelope averaged
     over ``NOTCH_S`` (or the dwell; triangular, first null ``hum.notch_hz`` off the line), remodulated and
     subtracted. A steady line goes whole; a tone a quarter and half the notch's half-width off the line keeps 5-8
-    and 36 % of its power, one a half-width off or more 91 % or more (dwells of up to two ``TRACK_S``; on longer ones
-    a tone within about 1 Hz of the strongest line, which hum's own line outshines there, is followed with it). The grid's frequency wanders (0.01-0.05 Hz over
-    seconds, k times that at order k): the lines are also taken out along the strongest one's phase, followed over
-    ``TRACK_S`` and scaled to each order, and of the two the echo left weaker is kept (hum drifting 50.00 to 50.05
-    Hz over 10 s read as a drone, its residue 16 dB under it, with the fixed lines alone); the dwell must hold two
-    ``TRACK_S``."""
+    and 36 % of its power, one a half-width off or more 91 % or more. The grid's frequency wanders (0.01-0.05 Hz
+    over seconds, k times that at order k): on a dwell of over two ``TRACK_S`` the lines are also taken out along
+    the strongest one's phase, followed over ``TRACK_S`` and scaled to each order, and of the two the echo left
+    weaker is kept (hum drifting 50.00 to 50.05 Hz over 10 s read as a drone, its residue 16 dB under it, with the
+    fixed lines alone); a tone within about 1 Hz of the strongest line, which hum's own line outshines there, is
+    then followed with it."""
     out = np.array(signal, dtype=np.complex128)
     n = out.shape[0]
     t = np.arange(n) / prf_hz
