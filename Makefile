@@ -114,9 +114,10 @@ offmodel-cw: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_cw.py --workdir $(CW_DIR) -j 2
 
 # The same recordings with mains hum added (50 Hz and its harmonics, in I only, 20 dB over the noise; a copy of each
-# kept beside it under CW_DIR, ~0.3 GB): what taking the hum out (mdpipe/process/mains.py) leaves of each reading.
+# kept beside it under CW_DIR, ~0.3 GB), read with the hum searched (mdpipe/process/mains.py) and not (~6 min).
 offmodel-cw-hum: $(MDPIPE)
 	$(BIN)/python benchmarks/bench_cw.py --workdir $(CW_DIR) -j 2 --hum-db 20
+	$(BIN)/python benchmarks/bench_cw.py --workdir $(CW_DIR) -j 2 --hum-db 20 --mains-hz none
 
 # Every capture under IN (a folder, searched recursively), processed by JOBS worker processes into OUT
 # (make batch IN=captures OUT=results JOBS=4 ARGS="--blades 3"). Only captures whose input, options or

@@ -66,16 +66,17 @@ def with_hum(path, hum_db, *, seed):
     return out
 
 
-def run_scene(sid, workdir, kind="filtered", hum_db=None):
-    """Record scene ``sid`` (or reuse it), with mains hum ``hum_db`` over its noise if given, and process it: (sid,
-    description, truth, row, classes), as ``bench_offmodel.run_scene`` returns for the FMCW capture."""
+def run_scene(sid, workdir, kind="filtered", hum_db=None, mains_hz="auto"):
+    """Record scene ``sid`` (or reuse it), with mains hum ``hum_db`` over its noise if given, and process it (hum
+    searched as ``mains_hz`` says): (sid, description, truth, row, classes), as ``bench_offmodel.run_scene`` returns
+    for the FMCW capture."""
     from mdpipe.params import ProcessParams
     from mdpipe.process.pipeline import process_capture
 
     path, scene, truth = record(sid, workdir, kind)
     if hum_db is not None:
         path = with_hum(path, hum_db, seed=sid)
-    given = {}
+    given = {"mains_hz": mains_hz}
     if scene["given_blades"]:
         given["n_blades"] = truth["nbl"]
     if scene["given_el"] and scene["kind"] == "drone":
@@ -92,14 +93,16 @@ def main():
     parser.add_argument("-j", "--jobs", type=int, default=2)
     parser.add_argument("--hum-db", type=float, default=None,
                         help="add mains hum (50 Hz and harmonics, in I only) this far over the noise to each recording")
+    parser.add_argument("--mains-hz", default="auto", help="mdpipe's --mains-hz (none: hum not searched)")
     args = parser.parse_args()
     Path(args.workdir).mkdir(parents=True, exist_ok=True)
     ids = bench_offmodel.parse_ids(args.scenes)
     for kind in args.kinds.split(","):
         with ProcessPoolExecutor(args.jobs) as pool:
             results = sorted(pool.map(run_scene, ids, [args.workdir] * len(ids), [kind] * len(ids),
-                                      [args.hum_db] * len(ids)), key=lambda r: r[0])
+                                      [args.hum_db] * len(ids), [args.mains_hz] * len(ids)), key=lambda r: r[0])
         hum = "" if args.hum_db is None else f", mains hum {args.hum_db:g} dB over the noise added"
+        hum += "" if args.mains_hz == "auto" else f", --mains-hz {args.mains_hz}"
         print(f"## CW recordings, {kind}{hum}: {len(results)} scenes of benchmarks/offmodel\n")
         bench_offmodel.report(results)
         given, right = undersampled(results)

@@ -40,7 +40,8 @@ CHANCE_SIGMAS = 3.0      # lines met by chance) by MIN_LINES and this many Poiss
 MAX_LINE_STEP = 2        # hum's lines lie at every order, or (a rectifier's ripple) every second one
 MAX_OFF = 0.25           # ... on them: their median offset from k f0 this share of the reach allowed (lines met by
                          # chance within it: about half; hum's 0.001-0.1, drifting 0.2 Hz over 10 s included)
-MIN_CYCLES = 25          # a dwell of at least 25 periods of the grid (0.5 s at 50 Hz): notches a share of the span
+MIN_CYCLES = 10          # a dwell of at least 10 periods of the grid (0.2 s at 50 Hz): its lines resolved apart
+NOTCH_CYCLES = 25        # under 25 (0.5 s), a line's envelope is its mean over the dwell: notches of a bin a side
 NOTCH_S = 1.0            # each line's envelope averaged over this (or the dwell): first null max(2 Hz, 2 bins) off
 PAD = 2                  # zero-padding of the spectrum lines are read on
 TRACK_S = 1.0            # the strongest line's phase followed over this (its wander, within about 1 Hz of it)
@@ -53,6 +54,14 @@ def notch_boxcar(n, prf_hz):
     """Samples of each of the two boxcars that average a hum line's envelope: half the dwell, at most
     ``NOTCH_S / 2``."""
     return max(1, min(n // 2, int(round(NOTCH_S * prf_hz / 2))))
+
+
+def _whole(n, prf_hz, f0_hz):
+    """Whether a dwell of ``n`` samples is too short (under ``NOTCH_CYCLES`` periods of ``f0_hz``) for a notch that
+    follows a line's envelope: each line is then taken out as its mean over the dwell (a steady tone's least-squares
+    fit), notches of one bin a side, a third of the notches' two bins a side (0.22-0.35 s CW recordings with hum 20 dB
+    over their noise read chopping frequencies of 50 Hz, ``ok``, where hum was not searched under 0.5 s)."""
+    return n / prf_hz < NOTCH_CYCLES / f0_hz
 
 
 @dataclass(frozen=True)
@@ -189,7 +198,7 @@ def find_hum(signal, *, prf_hz, mains_hz):
                                                                sharp=False)}
             lines = sorted({**drifting, **{line[0]: line for line in lines}}.values(), key=lambda line: -line[2])
             best = Hum(f0_hz=f0, lines=tuple((k, f) for k, f, _ in lines),
-                       notch_hz=prf_hz / notch_boxcar(n, prf_hz))
+                       notch_hz=prf_hz / (n if _whole(n, prf_hz, f0) else notch_boxcar(n, prf_hz)))
     return best
 
 
@@ -207,8 +216,8 @@ def _goes_on(spectrum, f0_hz, lines, top):
 def without_hum(signal, hum, *, prf_hz):
     """``signal`` (n,) or (n, columns) with each of ``hum``'s lines notched out, strongest first (a weaker line's
     envelope is then not read through a stronger one's): the echo demodulated at the line, its envelope averaged
-    over ``NOTCH_S`` (or the dwell; triangular, first null ``hum.notch_hz`` off the line), remodulated and
-    subtracted. A steady line goes whole; a tone a quarter and half the notch's half-width off the line keeps 5-8
+    over ``NOTCH_S`` (or the dwell; triangular, first null ``hum.notch_hz`` off the line; on a dwell under
+    ``NOTCH_CYCLES`` periods its mean), remodulated and subtracted. A steady line goes whole; a tone a quarter and half the notch's half-width off the line keeps 5-8
     and 36 % of its power, one a half-width off or more 91 % or more. The grid's frequency wanders (0.01-0.05 Hz
     over seconds, k times that at order k): on a dwell of over two ``TRACK_S`` the lines are also taken out along
     the strongest one's phase, followed over ``TRACK_S`` and scaled to each order, and of the two the echo left
@@ -242,9 +251,13 @@ def _notched(out, hum, *, prf_hz, wander=None):
     centres = np.minimum(edges + (block - 1) / 2, (edges + n - 1) / 2)  # a short last block's centre
     t = np.arange(n) / prf_hz
     index = np.arange(n)
+    whole = _whole(n, prf_hz, hum.f0_hz)
     for k, f_hz in hum.lines:
         phase = 2 * np.pi * f_hz * t if wander is None else 2 * np.pi * f_hz * t + k * wander
         carrier = np.exp(1j * phase).reshape((n,) + (1,) * (out.ndim - 1))
+        if whole:
+            out -= np.mean(out * np.conj(carrier), axis=0) * carrier
+            continue
         blocks = np.add.reduceat(out * np.conj(carrier), edges, axis=0) / np.diff(np.append(edges, n)).reshape(
             (-1,) + (1,) * (out.ndim - 1))
         smooth = triangular_average(blocks, max(1, size // block), axis=0).reshape(len(edges), -1)
