@@ -58,9 +58,9 @@ def notch_boxcar(n, prf_hz):
 
 def _whole(n, prf_hz, f0_hz):
     """Whether a dwell of ``n`` samples is too short (under ``NOTCH_CYCLES`` periods of ``f0_hz``) for a notch that
-    follows a line's envelope: each line is then taken out as its mean over the dwell (a steady tone's least-squares
-    fit), notches of one bin a side, a third of the notches' two bins a side (0.22-0.35 s CW recordings with hum 20 dB
-    over their noise read chopping frequencies of 50 Hz, ``ok``, where hum was not searched under 0.5 s)."""
+    follows a line's envelope, two bins a side of it: each line is then taken out as its mean over the dwell (a
+    steady tone's least-squares fit), one bin a side (0.22-0.35 s CW recordings with hum 20 dB over their noise read
+    chopping frequencies of 50 Hz, ``ok``, where hum was not searched under 0.5 s)."""
     return n / prf_hz < NOTCH_CYCLES / f0_hz
 
 
