@@ -453,13 +453,13 @@ def _views_without_hum(flash_views, hum, *, prf_hz):
                    sides=mains.without_hum(views.sides, hum, prf_hz=prf_hz))
 
 
-def _on_hum(turn, hum, *, body_hz):
+def _on_hum(turn, hum, *, body_hz, prf_hz):
     """``turn`` (a :class:`Rotation`), withheld (``mains.STATUS``) where its chopping comb, lines at ``body_hz`` plus
     its multiples, fell on the notches that took the mains ``hum`` out (:meth:`mains.Hum.covers`): a rotor held
     still at a multiple of the grid's rate gives the lines hum gives, and the lines that told it went with the
     hum."""
     chop_hz = turn.chopping.value
-    if chop_hz is None or not hum.covers(body_hz, chop_hz):
+    if chop_hz is None or not hum.covers(body_hz, chop_hz, prf_hz=prf_hz):
         return turn
     return Rotation.withheld(mains.STATUS, f"rotation not estimable: the lines of the chopping frequency read, "
                              f"{chop_hz:.1f} Hz, fell on the harmonics of the mains hum at {hum.f0_hz:.2f} Hz taken "
@@ -1770,7 +1770,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     if hidden is not None:
         turn = _undersampled(turn, hidden)
     if hum is not None:
-        turn = _on_hum(turn, hum, body_hz=body_doppler_hz)
+        turn = _on_hum(turn, hum, body_hz=body_doppler_hz, prf_hz=prf_hz)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,

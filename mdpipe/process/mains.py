@@ -35,8 +35,10 @@ FLOOR_HZ = 25.0          # the local median is taken over +-this about each orde
 DRIFT = 2e-4             # the grid's frequency moves about 0.01 Hz over a recording: order k within k times this
 WANDER = 2e-3            # ... and, once hum is found, its orders taken out within k times this, smeared or not
 MIN_LINES = 6            # (a hexarotor near 60 rev/s met 3 orders of 60.2 Hz, sharp and on them, by chance)
-CHANCE_OFFSETS = (1 / 3, 1 / 2, 2 / 3)  # hum's lines outnumber those at these fractions between its orders (other
-CHANCE_SIGMAS = 3.0      # lines met by chance) by MIN_LINES and this many Poisson deviations of the most of them
+CHANCE_OFFSETS = tuple(sorted({j / m for m in range(2, 8) for j in range(1, m)}))  # hum's lines outnumber those at
+CHANCE_SIGMAS = 3.0      # these fractions between its orders (lines met by chance, or a finer comb's: a wingbeat at
+                         # 10 Hz about a still body met 16 orders of 50 Hz) by MIN_LINES and this many Poisson
+                         # deviations of the most of them
 MAX_LINE_STEP = 2        # hum's lines lie at every order, or (a rectifier's ripple) every second one
 MAX_OFF = 0.25           # ... on them: their median offset from k f0 this share of the reach allowed (lines met by
                          # chance within it: about half; hum's 0.001-0.1, drifting 0.2 Hz over 10 s included)
@@ -77,12 +79,12 @@ class Hum:
         return (f"mains hum at {self.f0_hz:.2f} Hz: {len(self.lines)} lines at its harmonics taken out before the "
                 f"analysis (--mains-hz none keeps them)")
 
-    def covers(self, body_hz, spacing_hz, orders=8):
-        """Whether a comb of lines at ``body_hz + k spacing_hz`` (k = +-1..+-``orders``) fell, half of them or
-        more, within the notches taken out."""
+    def covers(self, body_hz, spacing_hz, *, prf_hz, orders=8):
+        """Whether a comb of lines at ``body_hz + k spacing_hz`` (k = +-1..+-``orders``, folded into the span
+        ``prf_hz``) fell, half of them or more, within the notches taken out."""
         taken = np.array([f for _, f in self.lines])
         k = np.concatenate([np.arange(1, orders + 1), -np.arange(1, orders + 1)])
-        positions = body_hz + k * spacing_hz
+        positions = np.mod(body_hz + k * spacing_hz + prf_hz / 2, prf_hz) - prf_hz / 2
         near = np.min(np.abs(positions[:, None] - taken[None, :]), axis=1) < self.notch_hz
         return bool(np.mean(near) >= 0.5)
 
@@ -217,8 +219,9 @@ def without_hum(signal, hum, *, prf_hz):
     """``signal`` (n,) or (n, columns) with each of ``hum``'s lines notched out, strongest first (a weaker line's
     envelope is then not read through a stronger one's): the echo demodulated at the line, its envelope averaged
     over ``NOTCH_S`` (or the dwell; triangular, first null ``hum.notch_hz`` off the line; on a dwell under
-    ``NOTCH_CYCLES`` periods its mean), remodulated and subtracted. A steady line goes whole; a tone a quarter and half the notch's half-width off the line keeps 5-8
-    and 36 % of its power, one a half-width off or more 91 % or more. The grid's frequency wanders (0.01-0.05 Hz
+    ``NOTCH_CYCLES`` periods its mean), remodulated and subtracted. A steady line goes whole; a tone a quarter and
+    half the notch's half-width off the line keeps 5-8 and 36 % of its power, one a half-width off or more 91 % or
+    more. The grid's frequency wanders (0.01-0.05 Hz
     over seconds, k times that at order k): on a dwell of over two ``TRACK_S`` the lines are also taken out along
     the strongest one's phase, followed over ``TRACK_S`` and scaled to each order, and of the two the echo left
     weaker is kept (hum drifting 50.00 to 50.05 Hz over 10 s read as a drone, its residue 16 dB under it, with the
