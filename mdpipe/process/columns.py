@@ -108,7 +108,8 @@ COLUMNS = (
            "a drone seen only by flashes of an ambiguous period, is read as their echo (statuses `interference`)",
            "never (0 without bursts)"),
     Column("mains_hum_hz", "Hz", "grid frequency (within 1 % of 50 or 60 Hz, `--mains-hz`) of the mains hum found in "
-           "the echo, lines at 6 or more of its harmonics about 0 Hz, sharp, and taken out before the analysis "
+           "the echo, 6 or more sharp lines at its harmonics about 0 Hz (each sign of an order counts), and taken out "
+           "before the analysis "
            "(`mdpipe/process/mains.py`)", "no hum found, `--mains-hz none`, or a capture's `none` row (an I/Q "
            "recording's holds it)"),
     Column("mdpipe_version", "-", "version of mdpipe that made the row", "never"),

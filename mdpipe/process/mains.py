@@ -35,10 +35,10 @@ FLOOR_HZ = 25.0          # the local median is taken over +-this about each orde
 DRIFT = 2e-4             # the grid's frequency moves about 0.01 Hz over a recording: order k within k times this
 WANDER = 2e-3            # ... and, once hum is found, its orders taken out within k times this, smeared or not
 MIN_LINES = 6            # (a hexarotor near 60 rev/s met 3 orders of 60.2 Hz, sharp and on them, by chance)
-CHANCE_OFFSETS = tuple(sorted({j / m for m in range(2, 8) for j in range(1, m)}))  # hum's lines outnumber those at
-CHANCE_SIGMAS = 3.0      # these fractions between its orders (lines met by chance, or a finer comb's: a wingbeat at
-                         # 10 Hz about a still body met 16 orders of 50 Hz) by MIN_LINES and this many Poisson
-                         # deviations of the most of them
+CHANCE_OFFSETS = (1 / 3, 1 / 2, 2 / 3)  # hum's lines outnumber those at these fractions between its orders (other
+CHANCE_SIGMAS = 3.0      # lines met by chance) by MIN_LINES and this many Poisson deviations of the most of them
+FINER_SHARE = 0.5        # a comb f0 / m apart (m up to 7) whose every position between the orders holds this share of
+                         # the lines at them is a finer comb's (a wingbeat of 10 Hz about a still body: 16 orders)
 MAX_LINE_STEP = 2        # hum's lines lie at every order, or (a rectifier's ripple) every second one
 MAX_OFF = 0.25           # ... on them: their median offset from k f0 this share of the reach allowed (lines met by
                          # chance within it: about half; hum's 0.001-0.1, drifting 0.2 Hz over 10 s included)
@@ -159,7 +159,8 @@ def find_hum(signal, *, prf_hz, mains_hz):
     orders whose greatest common divisor is at most ``MAX_LINE_STEP`` (the grid's harmonics, or a rectifier's ripple
     at the even ones: a rotor of equal blades held still at 100 rev/s, lines every 200 Hz, is no hum), more than the
     lines standing at fractions between the orders, which a spectrum dense with a target's lines meets as often
-    (``CHANCE_OFFSETS``: hexarotors at 77 GHz, their folded combs sharp, met 3-14 orders of 50-60 Hz by chance), and
+    (``CHANCE_OFFSETS``: hexarotors at 77 GHz, their folded combs sharp, met 3-14 orders of 50-60 Hz by chance), with
+    no finer comb among them (``FINER_SHARE``), and
     they lie on the orders (``MAX_OFF``: a hexarotor's rotors 1-2 % apart about 60 rev/s met 24 orders of 60.2 Hz,
     each line somewhere within the reach allowed), and they do not go on beyond ``MAX_ORDERS``
     (``CONTINUES_SHARE``) where the span shows orders there: a rotor's comb,
@@ -189,10 +190,12 @@ def find_hum(signal, *, prf_hz, mains_hz):
             continue
         f0 = _fitted(lines)
         chance = max(len(_lines_at(spectrum, f0, np.arange(top) + offset)) for offset in CHANCE_OFFSETS)
+        finer = any(all(len(_lines_at(spectrum, f0, np.arange(top) + j / m)) >= FINER_SHARE * len(lines)
+                        for j in range(1, m)) for m in range(2, 8))
         off = np.median([abs(f - k * f0) / (spectrum.resolution_hz / 2 + abs(k) * DRIFT * f0) for k, f, _ in lines])
         if (abs(f0 / nominal_hz - 1) > GRID_TOLERANCE or np.gcd.reduce([int(round(abs(line[0]))) for line in lines])
                 > MAX_LINE_STEP or len(lines) < MIN_LINES + chance + CHANCE_SIGMAS * np.sqrt(chance)
-                or off > MAX_OFF or _goes_on(spectrum, f0, lines, top)):
+                or off > MAX_OFF or finer or _goes_on(spectrum, f0, lines, top)):
             continue
         if best is None or len(lines) > len(best.lines):
             # taken out: every order standing out, smeared or not (a line's wander smears it k times at order k)
@@ -226,7 +229,7 @@ def without_hum(signal, hum, *, prf_hz):
     the strongest one's phase, followed over ``TRACK_S`` and scaled to each order, and of the two the echo left
     weaker is kept (hum drifting 50.00 to 50.05 Hz over 10 s read as a drone, its residue 16 dB under it, with the
     fixed lines alone); a tone within about 1 Hz of the strongest line, which hum's own line outshines there, is
-    then followed with it."""
+    then followed with it. Columns share the wander (read on their sum) and the choice."""
     out = np.array(signal, dtype=np.complex128)
     n = out.shape[0]
     t = np.arange(n) / prf_hz
