@@ -214,8 +214,8 @@ def _goes_on(spectrum, f0_hz, lines, top):
     if top < MAX_ORDERS or len(beyond) < MIN_LINES:
         return False
     upper = sum(abs(line[0]) > MAX_ORDERS / 2 for line in lines) / (MAX_ORDERS - MAX_ORDERS // 2)
-    return len(_lines_at(spectrum, f0_hz, beyond)) / len(beyond) >= max(CONTINUES_SHARE * upper, 1e-9) \
-        and len(_lines_at(spectrum, f0_hz, beyond)) >= MIN_LINES
+    found = len(_lines_at(spectrum, f0_hz, beyond))
+    return found / len(beyond) >= max(CONTINUES_SHARE * upper, 1e-9) and found >= MIN_LINES
 
 
 def without_hum(signal, hum, *, prf_hz):

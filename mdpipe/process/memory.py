@@ -140,6 +140,7 @@ def check_iq_memory(path, n_samples, params, process, *, stored_bytes_per_sample
     if plan["peak"] > process.max_memory_gb * GIB:
         raise ParameterError(
             f"{path}: analysing {n_samples:,} I/Q samples x {params.n_channels} RX "
-            f"({params.duration_s(n_samples):.4g} s) would need about {plan['peak'] / GIB:.2f} GB, over the {process.max_memory_gb:g} GB budget; raise "
+            f"({params.duration_s(n_samples):.4g} s) would need about {plan['peak'] / GIB:.2f} GB, over the "
+            f"{process.max_memory_gb:g} GB budget; raise "
             "--max-memory-gb or analyse a shorter recording")
     return plan
