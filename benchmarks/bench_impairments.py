@@ -15,8 +15,10 @@ share, against the unclipped reading of the same capture:
 Then, the same captures with the receiver gain 6 dB lower and another radar's chirps crossing ours (a burst every 37.3,
 9.71 or 2.43 chirps; short or long, strong or weak), or a TX-RX leakage beat whose amplitude and phase drift, with a DC
 offset, or the supply's 50 Hz ripple on the gain (each static echo then carries its Doppler lines about 0 Hz; read with
-mains hum taken out, the default, and kept, ``--mains-hz none``) (``tests/hostile.py``): new detections, the ones read
-drone or bird, targets whose class changed (of them, withheld as the impairment's echo), values moved.
+mains hum taken out, the default, and kept, ``--mains-hz none``), or every other chirp sent by a second transmitter
+(a MIMO radar's time-division cycle, its feed 120 deg apart; read with the cycle searched, the default, and as one
+sequence, ``--transmitters 1``) (``tests/hostile.py``): new detections, the ones read drone or bird, targets whose
+class changed (of them, withheld as the impairment's echo), values moved.
 
 Usage: ``python benchmarks/bench_impairments.py [--scenes 24] [--shares 0.001,0.01,0.03,0.1,0.3,0.5]``
 (``make bench-impairments``).
@@ -79,6 +81,8 @@ IMPAIRMENTS = {  # name: (how the capture is impaired, what the processing is to
     "the same ripple, the hum kept (`--mains-hz none`)": (lambda path, out: hostile.rippled(path, out, 0.01), HUM_KEPT),
     "the supply's ripple, 5 %": lambda path, out: hostile.rippled(path, out, 0.05),
     "the 5 % ripple, the hum kept (`--mains-hz none`)": (lambda path, out: hostile.rippled(path, out, 0.05), HUM_KEPT),
+    "two transmitters in turn, TX 2's feed 120 deg and 0.8 times TX 1's": hostile.alternated,
+    "the same, read as one sequence (`--transmitters 1`)": (hostile.alternated, {"transmitters": "1"}),
 }
 
 

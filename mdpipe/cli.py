@@ -389,6 +389,10 @@ def analysis_options(func):
                      help="Mains hum (lines at the grid's harmonics) searched in each echo and taken out: at 50 and 60 "
                           "Hz, one of them, or none (a receiver on batteries; a rotor held at a multiple of the grid's "
                           "rate, whose lines hum's would be)."),
+        click.option("--transmitters", default=ProcessParams.transmitters, show_default=True, metavar="AUTO|N",
+                     help="Transmitters the chirps take in turn (a MIMO radar's time-division cycle): auto (the "
+                          "file's TxSeq attribute, else found on the static echoes) or N; the first one's chirps are "
+                          "read, every N-th (1: every chirp as one sequence)."),
     ]
     func = attribute_overrides(func)
     for option in reversed(options):

@@ -3,7 +3,7 @@
 All quantities are SI; names carry their unit.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Optional
 
 import numpy as np
@@ -46,6 +46,17 @@ RADAR_LIMITS = {
     "n_channels": (1, 256, "", "RX channels: 1 to 256"),
     "full_scale_v_per_lsb": (1e-12, 1e3, "V/LSB", "volts per ADC count: 1 pV to 1 kV"),
 }
+
+
+def transmit_cycle(sequence):
+    """Chirps per transmit cycle of ``sequence`` (``TxSeq``: the transmitter of each chirp, in turn): its shortest
+    repeat, 1 where it holds one transmitter (every chirp alike). A cycle ``[1, 2]`` puts each transmitter's chirps
+    2 Tp apart."""
+    sequence = list(sequence)
+    if len(set(sequence)) <= 1:
+        return 1
+    return next(period for period in range(2, len(sequence) + 1)
+                if len(sequence) % period == 0 and sequence == sequence[:period] * (len(sequence) // period))
 
 
 @dataclass(frozen=True)
@@ -180,6 +191,11 @@ class RadarParams:
         """Capture duration for ``n_chirps`` chirps."""
         return n_chirps * self.chirp_period_s
 
+    def every(self, stride):
+        """These parameters for every ``stride``-th chirp (one transmitter's of a cycle of ``stride``): Tp times
+        ``stride``."""
+        return self if stride == 1 else replace(self, chirp_period_s=stride * self.chirp_period_s)
+
 
 # field -> (lowest, highest, unit, meaning) of an I/Q (CW) recording: a slow radar module's rates to an SDR's.
 IQ_LIMITS = {
@@ -290,6 +306,10 @@ class ProcessParams:
     mains_hz : str
         Mains hum searched in each echo and taken out (:mod:`mdpipe.process.mains`): ``auto`` (50 and 60 Hz),
         ``50``, ``60``, or ``none`` (a receiver on batteries, or a rotor held at a multiple of the grid's rate).
+    transmitters : str
+        Transmitters the chirps take in turn (:mod:`mdpipe.process.transmitters`): ``auto`` (the file's ``TxSeq``,
+        else found on the static echoes) or a count (``1``: every chirp read as one sequence); the first one's chirps
+        are read.
     """
 
     min_range_m: float = 1.0
@@ -311,6 +331,7 @@ class ProcessParams:
     chunk_chirps: int = 256
     max_memory_gb: float = 2.0
     mains_hz: str = "auto"
+    transmitters: str = "auto"
 
     def __post_init__(self):
         require_positive(max_range_m=self.max_range_m, chunk_chirps=self.chunk_chirps,
@@ -342,6 +363,16 @@ class ProcessParams:
                 require_positive(**{name: value})
         if self.mains_hz not in MAINS_CHOICES:
             raise ParameterError(f"mains_hz={self.mains_hz!r} must be one of {', '.join(MAINS_CHOICES)}")
+        object.__setattr__(self, "transmitters", str(self.transmitters).strip().lower())
+        if self.transmitters != "auto" and not (self.transmitters.isdigit()
+                                                and 1 <= int(self.transmitters) <= MAX_TRANSMITTERS):
+            raise ParameterError(f"transmitters={self.transmitters!r} must be auto or a count from 1 to "
+                                 f"{MAX_TRANSMITTERS}")
+
+    @property
+    def transmitters_given(self):
+        """The transmit cycle given (chirps), or None for ``auto``."""
+        return None if self.transmitters == "auto" else int(self.transmitters)
 
     @property
     def mains_frequencies_hz(self):
@@ -351,6 +382,7 @@ class ProcessParams:
 
 RANGE_WINDOWS = ("hann", "hamming", "blackman", "boxcar")
 MAINS_CHOICES = ("auto", "50", "60", "none")
+MAX_TRANSMITTERS = 16
 
 
 DOPPLER_LIMIT_MODES = ("auto", "full")

@@ -1,8 +1,9 @@
 """Hostile and broken Radarlog files, made with h5py: one builder per class, each ``build(folder) -> path``.
 
 Used by tests/test_hostile_files.py and benchmarks/bench_hostile.py. Every builder writes a capture
-that is valid except for one thing. :func:`overdriven`, :func:`interfered` and :func:`leaking` copy a capture with
-a receiver impairment of real recordings (tests/test_saturation.py, benchmarks/bench_impairments.py).
+that is valid except for one thing. :func:`overdriven`, :func:`interfered`, :func:`leaking`, :func:`rippled` and
+:func:`alternated` copy a capture with a receiver impairment of real recordings (tests/test_saturation.py,
+benchmarks/bench_impairments.py).
 """
 
 import json
@@ -10,6 +11,7 @@ import os
 
 import h5py
 import numpy as np
+from scipy import signal
 
 ATTRS = {"fStrt": 76e9, "fStop": 76.04e9, "TRampUp": 51.2e-6, "Tp": 64e-6, "fs": 5e6, "N": 256, "NrChn": 1,
          "FuSca": 1e-4}
@@ -261,6 +263,19 @@ def leaking(path, out, *, beat_share=0.02, amplitude=13000.0, drift=0.01, dc=300
         beat = np.cos(2 * np.pi * beat_share * float(attrs["fs"]) * sample_s + 0.05 * np.sin(2 * np.pi * 0.4 * t_s))
         return 0.5 * counts + amplitude * (1 + drift * np.sin(2 * np.pi * 0.7 * t_s)) * beat + dc
     return _rewritten(path, out, change, gain=0.5)
+
+
+def alternated(path, out, phase_deg=120.0, gain=0.8):
+    """``path`` as a MIMO radar's capture would be whose second transmitter sends every other chirp: the odd chirps'
+    echoes turned by its feed's ``phase_deg`` and scaled by ``gain`` (each chirp's analytic signal turned; the same
+    for every echo, as for one on boresight), the whole 2 dB lower to make room."""
+    turn = gain * np.exp(1j * np.deg2rad(phase_deg))
+
+    def change(counts, attrs):
+        counts = 0.8 * counts
+        counts[1::2] = np.real(signal.hilbert(counts[1::2], axis=1) * turn)
+        return counts
+    return _rewritten(path, out, change, gain=0.8)
 
 
 RIPPLE_ORDERS = ((1, 0.5, 0.3), (2, 1.0, 0.0), (3, 0.3, 2.0), (4, 0.5, 1.0))  # (harmonic of 50 Hz, weight, phase rad)

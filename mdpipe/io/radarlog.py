@@ -2,7 +2,8 @@
 
 Canonical: SI scalar root attributes ``fStrt fStop TRampUp TRampDo Tp fs N NrChn FuSca Creator``,
 int16 datasets ``/Chn1 ... /Chn{NrChn}`` of shape (n_chirps, N) chunked by rows, optional
-``/RxPosn`` (NrChn,) and, for simulated files, ``/Truth`` with attributes ``scene_yaml`` and
+``/RxPosn`` (NrChn,), an optional ``TxSeq`` root attribute (the transmitter of each chirp, in turn: a MIMO
+radar's time-division cycle) and, for simulated files, ``/Truth`` with attributes ``scene_yaml`` and
 ``expected_json``.
 
 Variants read: ``Cfg_``-prefixed attribute names; one dataset ``/Data`` of shape
@@ -45,6 +46,7 @@ DEFAULT_CHUNK_CHIRPS = 256
 MAX_TEXT_CHARS = 1 << 20  # /Truth attributes (no larger than the file: attributes are not compressed)
 MAX_JSON_DEPTH = 32
 MAX_LINK_HOPS = 16
+MAX_TX_SEQUENCE = 64  # chirps of one transmit cycle (TxSeq)
 MAX_FILTERED_CHUNK_BYTES = 64 << 20  # a compressed chunk is decoded whole: a small file could ask for 4 GB
 ALLOW_EXTERNAL = "pass --allow-external for a trusted file"
 
@@ -297,7 +299,12 @@ class RadarlogReader:
     truth : dict or None
         ``{"scene_yaml": str, "expected": dict}`` for simulated files.
     warnings : list of str
-        Non-essential content that was malformed and ignored (``/RxPosn``, ``/Truth``), one line each.
+        Non-essential content that was malformed and ignored (``/RxPosn``, ``TxSeq``, ``/Truth``), one line each.
+    tx_sequence : tuple of int
+        The ``TxSeq`` root attribute (``Cfg_TxSeq``): the transmitter of each chirp, repeating; () without one.
+    stride : int
+        Every stride-th stored chirp is read (:meth:`select_every`; 1 until then): ``params`` and ``n_chirps`` are
+        those of the chirps read.
     read_chunk_bytes : int
         Bytes HDF5 decompresses at once to read a row (the largest chunk of a filtered dataset; 0 when
         the samples are stored uncompressed and read straight into the caller's buffer).
@@ -309,6 +316,7 @@ class RadarlogReader:
         self._first_chirp = None  # of every channel, to tell constant data (a fill value) from a signal
         self._varies = False
         self._lock = threading.Lock()
+        self.stride = 1
         check_regular_file(self.path)
         try:
             self._h5 = h5py.File(self.path, "r")
@@ -370,9 +378,41 @@ class RadarlogReader:
             self.params = RadarParams(**values, rx_positions_m=self._rx_positions(n_channels, allow_external))
         except ParameterError as exc:
             raise CaptureFormatError(f"{path}: {_name_attribute(exc)}") from None
-        self.n_chirps = int(n_chirps)
+        self.n_chirps = self._stored_chirps = int(n_chirps)
+        self._stored_params = self.params
         self.layout = Layout(prefix, kind, str(dtype), bool(frame_counter))
+        self.tx_sequence = self._tx_sequence()
         self.truth = self._truth(allow_external)
+
+    def select_every(self, stride):
+        """Read every ``stride``-th stored chirp from the first on (one transmitter's of a cycle of ``stride``):
+        ``params`` (Tp times ``stride``) and ``n_chirps`` become theirs."""
+        self.stride = int(stride)
+        self.params = self._stored_params.every(self.stride)
+        self.n_chirps = len(range(0, self._stored_chirps, self.stride))
+
+    def _tx_sequence(self):
+        """The ``TxSeq`` (or ``Cfg_TxSeq``) root attribute as a tuple of transmitter numbers (1 and up), or () with a
+        warning when it is anything else; its shape is checked before it is read."""
+        name = next((n for n in ("TxSeq", "Cfg_TxSeq") if n in self._h5.attrs), None)
+        if name is None:
+            return ()
+        problem = None
+        try:
+            attribute = self._h5.attrs.get_id(name)
+            shape, dtype = attribute.shape or (1,), attribute.dtype
+            if dtype.kind not in "iuf" or len(shape) != 1 or not 1 <= shape[0] <= MAX_TX_SEQUENCE:
+                problem = f"it is not a list of 1 to {MAX_TX_SEQUENCE} transmitter numbers ({dtype}, shape {shape})"
+            else:
+                values = np.atleast_1d(np.asarray(self._h5.attrs[name], dtype=np.float64))
+                if not np.all(np.isfinite(values)) or np.any(values < 1) or np.any(values != np.round(values)):
+                    problem = "its entries must be whole transmitter numbers from 1 up"
+        except (OSError, TypeError, ValueError, KeyError) as exc:
+            problem = f"unreadable ({str(exc).split('(')[0].strip()})"
+        if problem:
+            self.warnings.append(f"ignored attribute {name}: {problem}")
+            return ()
+        return tuple(int(v) for v in values)
 
     def _optional(self, name, allow_external, kind):
         """The object ``/name`` if present, safe to read and of ``kind``; otherwise None and a warning."""
@@ -425,11 +465,13 @@ class RadarlogReader:
         return {"scene_yaml": scene_yaml or "", "expected": expected}
 
     def _raw(self, start, stop, channels=None, out=None):
-        """Stored samples of chirps ``start:stop``, channel-major (C, M, N_stored), read into ``out`` if given."""
+        """Stored samples of chirps ``start:stop`` (of those read: every ``stride``-th stored), channel-major
+        (C, M, N_stored), read into ``out`` if given."""
         channels = list(range(self._n_channels) if channels is None else channels)
+        rows = np.s_[start * self.stride:max(start, stop - 1) * self.stride + (stop > start):self.stride]
         try:
             if self._datasets[0].ndim == 3:
-                block = self._datasets[0][start:stop][:, channels, :].transpose(1, 0, 2)
+                block = self._datasets[0][rows][:, channels, :].transpose(1, 0, 2)
                 if out is None:
                     return np.ascontiguousarray(block)
                 out[...] = block
@@ -437,7 +479,7 @@ class RadarlogReader:
             if out is None:
                 out = np.empty((len(channels), stop - start, self._datasets[0].shape[1]), self._datasets[0].dtype)
             for row, channel in zip(out, channels):
-                self._datasets[channel].read_direct(row, np.s_[start:stop])
+                self._datasets[channel].read_direct(row, rows)
             return out
         except OSError as exc:
             raise CaptureFormatError(
@@ -559,7 +601,8 @@ class CaptureWriter:
     the same bytes.
     """
 
-    def __init__(self, path, params, n_chirps, *, creator, truth=None, chunk_rows=64, overwrite=True):
+    def __init__(self, path, params, n_chirps, *, creator, truth=None, chunk_rows=64, overwrite=True,
+                 tx_sequence=None):
         if not hasattr(os, "pwrite"):
             raise PlatformError("writing a capture needs os.pwrite, which this platform lacks (Windows): run "
                                 "mdpipe simulate on Linux, macOS or WSL (reading and processing do not need it)")
@@ -583,6 +626,8 @@ class CaptureWriter:
             attrs["NrChn"] = np.int64(params.n_channels)
             attrs["FuSca"] = np.float64(params.full_scale_v_per_lsb)
             attrs["Creator"] = creator
+            if tx_sequence is not None:
+                attrs["TxSeq"] = np.asarray(tx_sequence, dtype=np.int64)
             self._offsets = [self._allocate(h5, f"Chn{c + 1}") for c in range(params.n_channels)]
             if params.rx_positions_m:
                 h5.create_dataset("RxPosn", data=np.asarray(params.rx_positions_m, dtype=np.float64),

@@ -98,7 +98,11 @@ COLUMNS = (
            "not given (0 is assumed; `blade_length_m_status` is then `assumed_elevation`)"),
     Column("threshold_db", "dB", "the paper's bandwidth threshold above the spectrum's mean (`--threshold-db`)", "never"),
     Column("wavelength_m", "m", "wavelength at the sweep centre, used for every Doppler-velocity conversion", "never"),
-    Column("prf_hz", "Hz", "chirp rate 1/Tp: the slow-time sample rate and the unambiguous Doppler span", "never"),
+    Column("prf_hz", "Hz", "chirp rate 1/Tp: the slow-time sample rate and the unambiguous Doppler span (of the "
+           "chirps read: one transmitter's, where they take turns)", "never"),
+    Column("transmitters", "-", "transmitters the chirps take in turn (a MIMO radar's time-division cycle; the file's "
+           "`TxSeq`, found on the static echoes, or `--transmitters`): the first one's chirps are read, every "
+           "`transmitters`-th; 1 for one transmitter (an I/Q recording's: 1)", "never"),
     Column("dwell_s", "s", "capture duration, chirps x Tp", "never"),
     Column("clipped_share", "-", "share of the samples read in pass 1 (the chirps probed) at the int16 full scale: "
            "over 0 a weaker detection may be clipping's image (statuses `clipping_image`)",

@@ -111,8 +111,10 @@ def read_chirps(n_samples):
     return int(np.clip(READ_SAMPLES // max(n_samples, 1), MIN_READ_CHIRPS, MAX_READ_CHIRPS))
 
 
-def common_mode(reader, *, window="hann", channel=0):
-    """Pass 0 over ``reader``'s channel ``channel``: its :class:`CommonMode`."""
+def common_mode(reader, *, window="hann", channel=0, phase_sums=None):
+    """Pass 0 over ``reader``'s channel ``channel``: its :class:`CommonMode`. Each read is also added to
+    ``phase_sums`` where given (a :class:`mdpipe.process.transmitters.PhaseSums`: the chirps by index, for their
+    transmit cycle)."""
     n, m = reader.params.n_samples, reader.n_chirps
     taper = range_window(window, n)
     rows = read_chirps(n)
@@ -121,6 +123,8 @@ def common_mode(reader, *, window="hann", channel=0):
     for first, stop in zip(edges[:-1], edges[1:]):
         samples = reader.read_counts(first, stop, channels=[channel])[0].astype(np.float32)
         part, spiked, excess = read_common_mode(samples, taper)
+        if phase_sums is not None:
+            phase_sums.add(first, samples)
         series.append(part)
         spikes += int(spiked.sum())
         profile += excess.sum(axis=0)

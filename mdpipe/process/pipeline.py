@@ -8,7 +8,7 @@ import numpy as np
 from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
 from mdpipe.io.iq import is_iq_recording
-from mdpipe.process import flashes, images, interference, memory, ranging, saturation, selection
+from mdpipe.process import flashes, images, interference, memory, ranging, saturation, selection, transmitters
 from mdpipe.process.classify import classify
 from mdpipe.process.cw import process_recording
 from mdpipe.process.features import RangeTrack, analyse_target
@@ -158,14 +158,51 @@ def clipped_share(reader, stats):
     return stats.clipped_fraction if reader.layout.sample_dtype == "int16" else None
 
 
-def _base_row(path, stats, process, params, clipped, common):
-    return base_row(path, process, params, n_samples=stats.n_chirps, clipped=clipped, interference=common.spike_share)
+def _base_row(path, stats, process, params, clipped, common, cycle):
+    return base_row(path, process, params, n_samples=stats.n_chirps, clipped=clipped, interference=common.spike_share,
+                    transmitters=cycle.cycle)
 
 
 def no_detection_note(test, process):
     """Why nothing was detected: the strongest line and band against their thresholds (dB over the noise)."""
     return (f"no moving target above the noise in {process.min_range_m:g}-{process.max_range_m:g} m at a false-alarm "
             f"probability of {test.false_alarm_probability:g} per capture ({test.shortfall()})")
+
+
+def check_readable(reader, process, path):
+    """Refuse a capture too short to analyse, needing more memory than allowed, or whose range gate holds too few
+    bins (before pass 0 reads a chirp, and again once one transmitter's chirps are selected)."""
+    if reader.n_chirps < MIN_CHIRPS:
+        raise ParameterError(f"{path}: {reader.n_chirps} chirp(s){' of one transmitter' if reader.stride > 1 else ''}; "
+                             f"the analysis needs at least {MIN_CHIRPS}")
+    memory.check_memory(reader, process)
+    n_gate = memory.gate_bin_counts(reader.params, process)[1]  # known before pass 1: an empty gate cannot crash it
+    if n_gate < 3:
+        raise ParameterError(f"{path}: the range gate [{process.min_range_m:g}, {process.max_range_m:g}] m holds "
+                             f"{n_gate} bin(s) of {reader.params.range_bin_m:.3g} m; widen it")
+
+
+def transmit_cycle(reader, process, path):
+    """The chirps' :class:`~mdpipe.process.transmitters.TransmitCycle` (``--transmitters``, the file's ``TxSeq``, else
+    a cycle of two found on the static echoes in pass 0) and pass 0's :class:`~mdpipe.process.interference.CommonMode`,
+    over the first transmitter's chirps, which ``reader`` then reads (pass 0 read again where a cycle was found)."""
+    given = process.transmitters_given
+    cycle = transmitters.TransmitCycle(given, "given") if given else transmitters.from_file(reader.tx_sequence)
+    if cycle is not None and cycle.cycle > 1:
+        reader.select_every(cycle.cycle)
+    check_readable(reader, process, path)
+    sums = None if cycle is not None else transmitters.PhaseSums(ranging.range_window(process.range_window,
+                                                                                       reader.params.n_samples))
+    common = interference.common_mode(reader, window=process.range_window, phase_sums=sums)
+    if cycle is not None:
+        return cycle, common
+    test = transmitters.cycle_test(sums)
+    if test is None or not test.found:
+        return transmitters.TransmitCycle(1, "single"), common
+    reader.select_every(test.cycle)
+    check_readable(reader, process, path)
+    return transmitters.TransmitCycle(test.cycle, "found", test), interference.common_mode(reader,
+                                                                                           window=process.range_window)
 
 
 def process_capture(path, process, *, frame_counter="auto", overrides=None, allow_external=False):
@@ -185,16 +222,9 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         return process_recording(path, process, overrides=overrides, allow_external=allow_external)
     with open_capture(path, frame_counter=frame_counter, overrides=overrides,
                       allow_external=allow_external) as reader:
+        cycle, common = transmit_cycle(reader, process, path)
         params = reader.params
-        if reader.n_chirps < MIN_CHIRPS:
-            raise ParameterError(f"{path}: {reader.n_chirps} chirp(s); the analysis needs at least {MIN_CHIRPS}")
-        memory.check_memory(reader, process)
-        n_gate = memory.gate_bin_counts(params, process)[1]  # known before pass 1: an empty gate cannot crash it
-        if n_gate < 3:
-            raise ParameterError(f"{path}: the range gate [{process.min_range_m:g}, {process.max_range_m:g}] m holds "
-                                 f"{n_gate} bin(s) of {params.range_bin_m:.3g} m; widen it")
         max_range_m = min(process.max_range_m, params.max_range_m)
-        common = interference.common_mode(reader, window=process.range_window)
         stats = ranging.gate_statistics(reader, window=process.range_window, zero_pad=process.zero_pad,
                                         min_range_m=process.min_range_m, max_range_m=max_range_m,
                                         chunk_chirps=process.chunk_chirps)
@@ -208,7 +238,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             test = selection.detection_test(stats, false_alarm_probability=process.false_alarm_probability)
             detections = selection.detect(stats, test, max_targets=process.max_targets, zero_pad=process.zero_pad)
         noise = selection.noise_power(stats) / params.n_channels
-        capture_notes = list(reader.warnings)
+        capture_notes = list(reader.warnings) + [n for n in (cycle.note(params.prf_hz),) if n]
         clipped = clipped_share(reader, stats)
         if clipped:
             capture_notes.append(f"{clipped:.2%} of the samples sit at the int16 full scale (clipped): "
@@ -218,7 +248,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
                                  "(another radar's chirps crossing ours)")
         rows, analyses = [], []
         if not detections:
-            row = _base_row(path, stats, process, params, clipped, common)
+            row = _base_row(path, stats, process, params, clipped, common, cycle)
             row["notes"] = "; ".join([no_detection_note(test, process)] + capture_notes)
             return CaptureResult(str(path), params, reader.layout.describe(), stats, [], [], [row],
                                  noise_power=noise, process=process, detection_test=test)
@@ -227,7 +257,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         targets = target_signals(reader, stats, tracks, process)
         layout = reader.layout.describe()
         analyse = functools.partial(analysed_row, reader, process=process, noise_power=noise,
-                                    base=lambda: _base_row(path, stats, process, params, clipped, common),
+                                    base=lambda: _base_row(path, stats, process, params, clipped, common, cycle),
                                     capture_notes=capture_notes)
         for index, (detection, target, (_, track_bins, _)) in enumerate(zip(detections, targets, tracks)):
             row, analysis = analyse(detection, target, track_bins)

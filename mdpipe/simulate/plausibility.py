@@ -8,6 +8,9 @@ blade checks live with their blocks (:class:`mdpipe.simulate.scene.RadarConfig`,
 
 Warned (:func:`scene_warnings`): a target whose Doppler extent (body plus micro-Doppler) leaves the
 unambiguous span ``+-1 / (2 Tp)``, so its micro-Doppler aliases.
+
+Where the chirps take transmitters in turn, the span is that of one transmitter's chirps (what the processing reads:
+Tp times the cycle).
 """
 
 import numpy as np
@@ -36,7 +39,7 @@ def _tracks(scene):
 
 def check_scene(scene):
     """Raise :class:`ParameterError` naming the first implausible target, with its numbers and the fix."""
-    radar = scene.radar.params
+    radar = scene.radar.analysed[0]
     for index, target, ranges, _, micro_hz in _tracks(scene):
         where = f"targets[{index}] ({target.name})"
         if ranges.max() > radar.max_range_m:
@@ -53,7 +56,7 @@ def check_scene(scene):
 
 def scene_warnings(scene):
     """One sentence per target whose Doppler extent leaves the unambiguous span (its micro-Doppler aliases)."""
-    radar = scene.radar.params
+    radar = scene.radar.analysed[0]
     half_span = 0.5 * radar.doppler_span_hz
     warnings = []
     for index, target, _, body_doppler, micro_hz in _tracks(scene):
@@ -61,5 +64,6 @@ def scene_warnings(scene):
         if radar.aliases(low, high):
             warnings.append(
                 f"targets[{index}] ({target.name}): Doppler reaches {low:.4g} .. {high:.4g} Hz, beyond the "
-                f"unambiguous +-{half_span:.4g} Hz (PRF {radar.prf_hz:.4g} Hz): its micro-Doppler aliases")
+                f"unambiguous +-{half_span:.4g} Hz (PRF {radar.prf_hz:.4g} Hz"
+                f"{' of one transmitter' if scene.radar.transmit_cycle > 1 else ''}): its micro-Doppler aliases")
     return warnings

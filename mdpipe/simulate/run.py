@@ -172,11 +172,14 @@ def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps
     # Chunk i is made channel by channel on both cores (BLAS held to one thread in each) while a writer
     # thread stores chunk i - 1 and a third makes chunk i + 1's factors; two chunks of int16 in memory.
     def factors(first):
-        return if_factors(plans, first, min(chunk_chirps, n_chirps - first), radar=radar, scale=1.0 / lsb_v)
+        return if_factors(plans, first, min(chunk_chirps, n_chirps - first), radar=radar, scale=1.0 / lsb_v,
+                          tx_phase_rad=tx_phase_rad)
 
+    # chirps sent by transmitters in turn: each one's position and feed turn the echoes' phases
+    tx_phase_rad = scene.radar.tx_phase_rad if scene.radar.transmit_cycle > 1 else None
     firsts = list(range(0, n_chirps, chunk_chirps))
     with CaptureWriter(out_path, writer_params, n_chirps, creator=f"mdpipe {__version__} simulate",
-                       overwrite=overwrite) as writer, \
+                       overwrite=overwrite, tx_sequence=scene.radar.tx_sequence) as writer, \
             threadpool_limits(limits=1, user_api="blas"), \
             ThreadPoolExecutor(max_workers=min(radar.n_channels, os.cpu_count() or 1)) as pool, \
             ThreadPoolExecutor(max_workers=1) as io, ThreadPoolExecutor(max_workers=1) as ahead:

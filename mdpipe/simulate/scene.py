@@ -13,7 +13,8 @@ import numpy as np
 import yaml
 
 from mdpipe.errors import ParameterError
-from mdpipe.params import RadarParams
+from mdpipe.params import RadarParams, transmit_cycle
+from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS
 from mdpipe.simulate.plausibility import check_scene
 from mdpipe.simulate.schema import NON_NEGATIVE, POSITIVE, build, check, short_repr
 from mdpipe.simulate.targets import KINDS
@@ -22,12 +23,21 @@ RADARLOG_RX_SPACING_M = 1.948e-3
 MAX_FRACTIONAL_BANDWIDTH = 0.2
 MAX_SNR_DB = 100.0
 MAX_SCENE_BYTES = 10_000_000
+MAX_TRANSMITTERS = 8       # transmitters a scene may cycle its chirps through
+MAX_TX_SEQUENCE = 64       # chirps of one transmit cycle
 SNR_RANGE = check(lambda v: -MAX_SNR_DB <= v <= MAX_SNR_DB, f"within [-{MAX_SNR_DB:g}, {MAX_SNR_DB:g}] dB")
 
 
 @dataclass(frozen=True)
 class RadarConfig:
-    """The radar block: chirp parameters, capture length and RX layout."""
+    """The radar block: chirp parameters, capture length, RX layout and the transmitters the chirps take in turn.
+
+    ``tx_sequence`` (1-based transmitter numbers, e.g. ``[1, 2]``: a MIMO radar's time-division cycle, written to the
+    file as ``TxSeq``; None or one entry: one transmitter) repeats over the chirps; transmitter k sits at
+    ``tx_positions_m[k - 1]`` along the array axis (default: a uniform virtual array, k - 1 RX apertures of
+    ``n_channels`` spacings each) and adds its feed's ``tx_phase_deg[k - 1]`` (default 0). A target off boresight,
+    or feeds apart in phase, then change every echo's phase from one transmitter's chirps to the next.
+    """
 
     f_start_hz: float = field(metadata=POSITIVE)
     f_stop_hz: float = field(metadata=POSITIVE)
@@ -40,8 +50,20 @@ class RadarConfig:
     ramp_down_s: float = field(default=0.0, metadata=NON_NEGATIVE)
     rx_spacing_m: float = field(default=RADARLOG_RX_SPACING_M, metadata=POSITIVE)
     rx_positions_m: Optional[tuple[float, ...]] = None
+    tx_sequence: Optional[tuple[int, ...]] = field(default=None, metadata=check(
+        lambda k: 1 <= k <= MAX_TRANSMITTERS, f"transmitter numbers 1 to {MAX_TRANSMITTERS}"))
+    tx_positions_m: Optional[tuple[float, ...]] = None
+    tx_phase_deg: Optional[tuple[float, ...]] = None
 
     def __post_init__(self):
+        if self.tx_sequence is not None and not 1 <= len(self.tx_sequence) <= MAX_TX_SEQUENCE:
+            raise ParameterError(f"tx_sequence lists {len(self.tx_sequence)} chirps; give 1 to {MAX_TX_SEQUENCE} "
+                                 "transmitter numbers (one transmit cycle)")
+        for name in ("tx_positions_m", "tx_phase_deg"):
+            given = getattr(self, name)
+            if given is not None and len(given) < self.n_transmitters:
+                raise ParameterError(f"{name} lists {len(given)} entries for transmitters 1 to {self.n_transmitters} "
+                                     "(tx_sequence)")
         if self.rx_positions_m is not None and len(self.rx_positions_m) < self.n_channels:
             raise ParameterError(
                 f"rx_positions_m lists {len(self.rx_positions_m)} positions for n_channels={self.n_channels}")
@@ -65,6 +87,41 @@ class RadarConfig:
             n_samples=self.n_samples, n_channels=self.n_channels, ramp_down_s=self.ramp_down_s,
             rx_positions_m=positions,
         )
+
+    @property
+    def transmit_cycle(self):
+        """Chirps per transmit cycle (:func:`mdpipe.params.transmit_cycle`); 1 for one transmitter."""
+        return transmit_cycle(self.tx_sequence or (1,))
+
+    @property
+    def analysed(self):
+        """(RadarParams, chirps) of the first transmitter's chirps, what the processing reads of a cycling capture."""
+        cycle = self.transmit_cycle
+        return self.params.every(cycle), len(range(0, self.n_chirps, cycle))
+
+    @property
+    def n_transmitters(self):
+        """The highest transmitter number of ``tx_sequence`` (1 without one)."""
+        return max(self.tx_sequence or (1,))
+
+    def chirp_transmitters(self, chirps):
+        """The 0-based transmitter index of each chirp index in ``chirps``."""
+        sequence = np.asarray(self.tx_sequence or (1,), dtype=np.int64) - 1
+        return sequence[np.asarray(chirps) % len(sequence)]
+
+    def tx_phase_rad(self, chirps, los_y):
+        """The phase (rad) each chirp's transmitter adds to an echo arriving along ``los_y`` (the line of sight's
+        component along the array axis), shape ``np.broadcast(chirps[:, None], los_y)``: its position's path
+        ``2 pi y sin(theta) / lambda`` at the sweep start and its feed's phase."""
+        tx = self.chirp_transmitters(chirps)
+        if self.tx_positions_m is None:
+            positions = self.n_channels * self.rx_spacing_m * np.arange(self.n_transmitters)
+        else:
+            positions = np.asarray(self.tx_positions_m[: self.n_transmitters], dtype=np.float64)
+        feeds = np.deg2rad(np.asarray(self.tx_phase_deg[: self.n_transmitters] if self.tx_phase_deg is not None
+                                      else np.zeros(self.n_transmitters), dtype=np.float64))
+        path = 2 * np.pi * self.f_start_hz / SPEED_OF_LIGHT_MPS * positions[tx][:, None] * los_y
+        return path + feeds[tx][:, None]
 
 
 TARGET_KINDS = {kind: module.Target for kind, module in KINDS.items()}

@@ -92,8 +92,11 @@ def plan_targets(scene, *, chunk_chirps=CHUNK_CHIRPS):
     return plans
 
 
-def if_factors(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0):
+def if_factors(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0, tx_phase_rad=None):
     """The two factors of the noise-free IF of chirps ``first_chirp ... first_chirp + n_chirps - 1``.
+
+    ``tx_phase_rad(chirps, los_y)``, where the chirps take transmitters in turn
+    (:meth:`mdpipe.simulate.scene.RadarConfig.tx_phase_rad`), gives the phase each chirp's transmitter adds.
 
     Returns
     -------
@@ -120,6 +123,8 @@ def if_factors(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0)
             reference_m = plan.mean_range_m
         tone = np.exp(-2j * np.pi * beat_frequency_hz(reference_m, slope_hz_per_s=radar.slope_hz_per_s) * tau)
         steering = np.exp(2j * np.pi * f0_hz / SPEED_OF_LIGHT_MPS * rx_y_m[:, None, None] * echo.los[..., 1])
+        if tx_phase_rad is not None:
+            steering = steering * np.exp(1j * tx_phase_rad(first_chirp + np.arange(n_chirps), echo.los[..., 1]))
         g_blocks.append(g * steering)
         b_blocks.append(plan.basis * tone)
     g_all = np.concatenate(g_blocks, axis=-1)
@@ -129,12 +134,13 @@ def if_factors(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0)
     return lhs, rhs
 
 
-def noise_free_if(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0):
+def noise_free_if(plans, first_chirp, n_chirps, *, radar, channels=None, scale=1.0, tx_phase_rad=None):
     """Noise-free IF of chirps ``first_chirp ... first_chirp + n_chirps - 1``, in volts times ``scale``.
 
     Returns
     -------
     ndarray, float32, shape (n_channels, n_chirps, n_samples)
     """
-    lhs, rhs = if_factors(plans, first_chirp, n_chirps, radar=radar, channels=channels, scale=scale)
+    lhs, rhs = if_factors(plans, first_chirp, n_chirps, radar=radar, channels=channels, scale=scale,
+                          tx_phase_rad=tx_phase_rad)
     return lhs @ rhs

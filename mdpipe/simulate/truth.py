@@ -47,9 +47,10 @@ def expected_features(scene, plans, *, powers_v2=None, sigma_v=0.0):
     """Predicted features of every target of ``scene`` (a JSON-ready dict).
 
     ``powers_v2`` lists each target's (whole, moving) IF power (V^2, per sample and channel) and
-    ``sigma_v`` the noise standard deviation, for the per-target SNRs.
+    ``sigma_v`` the noise standard deviation, for the per-target SNRs. Where the chirps take transmitters in turn,
+    the prediction is for the first transmitter's chirps (Tp times the cycle), which the processing reads.
     """
-    radar, n_chirps = scene.radar.params, scene.radar.n_chirps
+    radar, n_chirps = scene.radar.analysed  # a cycle of transmitters: the first one's chirps, as processed
     targets = []
     for index, plan in enumerate(plans):
         target = plan.target
@@ -69,6 +70,8 @@ def expected_features(scene, plans, *, powers_v2=None, sigma_v=0.0):
     return {
         "radar": {"wavelength_m": radar.wavelength_m, "range_bin_m": radar.range_bin_m,
                   "doppler_span_hz": radar.doppler_span_hz, "n_chirps": n_chirps,
-                  "duration_s": radar.duration_s(n_chirps)},
+                  "duration_s": radar.duration_s(n_chirps),
+                  **({"tx_sequence": list(scene.radar.tx_sequence), "transmit_cycle": scene.radar.transmit_cycle}
+                     if scene.radar.transmit_cycle > 1 else {})},
         "targets": targets,
     }
