@@ -18,10 +18,11 @@ from mdpipe import __version__
 from mdpipe.errors import MdpipeError, one_line
 from mdpipe.io import open_capture
 from mdpipe.io.radarlog import ATTRIBUTES
-from mdpipe.params import MAINS_CHOICES, RANGE_WINDOWS, FigureParams, ProcessParams
+from mdpipe.params import MAINS_CHOICES, MAX_BLADES, RANGE_WINDOWS, FigureParams, ProcessParams
 
 PROGRESS_MIN_SAMPLES = 1 << 25
 EXIT_USAGE, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_TERMINATED = 1, 2, 130, 128 + signal.SIGTERM
+EXIT_BROKEN_PIPE = 128 + signal.SIGPIPE
 
 
 class InputError(click.ClickException):
@@ -67,7 +68,7 @@ def _unraisable(previous):
 
 
 class BladeCount(click.ParamType):
-    """``auto`` (None) or a whole number of blades >= 1."""
+    """``auto`` (None) or a whole number of blades from 1 to ``MAX_BLADES``."""
 
     name = "auto|N"
 
@@ -78,14 +79,14 @@ class BladeCount(click.ParamType):
             count = int(value)
         except (TypeError, ValueError):
             count = 0
-        if count < 1 or str(count) != str(value).strip():
-            self.fail(f"{value!r} is neither auto nor a whole number of blades >= 1", param, ctx)
+        if not 1 <= count <= MAX_BLADES or str(count) != str(value).strip():
+            self.fail(f"{value!r} is neither auto nor a whole number of blades from 1 to {MAX_BLADES}", param, ctx)
         return count
 
 
 class Group(click.Group):
     """One exit-code convention: usage errors 1, :class:`MdpipeError` 2 (one line, no traceback), Ctrl-C 130,
-    SIGTERM 143."""
+    SIGTERM 143, stdout closed by its reader 141 (as SIGPIPE), silently."""
 
     def make_context(self, *args, **kwargs):
         try:
@@ -111,6 +112,9 @@ class Group(click.Group):
             raise InputError(str(exc)) from None
         except (click.ClickException, click.exceptions.Exit, click.exceptions.Abort):
             raise
+        except BrokenPipeError:  # whoever read stdout stopped (`mdpipe info x.h5 | head -1`): nothing left to say
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # (nor at exit, when stdout is flushed)
+            raise click.exceptions.Exit(EXIT_BROKEN_PIPE) from None
         except Exception as exc:  # OSError outside any one capture's work (writing a summary, a folder that
             # vanished), an input nobody foresaw, or a bug: one line all the same
             raise InputError(one_line(exc)) from None
@@ -550,29 +554,34 @@ def _import_in_background(modules):
     runner.start_thread(load)
 
 
-def _gather(folder, *, figures, early=None):
+def _gather(folder, *, figures, early=None, only=None):
     """Write FOLDER/features.csv (and summary.png) from its captures' tables; print it; return the failures.
-    ``early``: a :class:`mdpipe.batch.summary.EarlySummary` whose figure is taken if drawn from these rows."""
+    ``early``: a :class:`mdpipe.batch.summary.EarlySummary` whose figure is taken if drawn from these rows;
+    ``only``: the capture folders to gather (a batch's own), the others named by their count."""
     from collections import Counter
 
     from mdpipe.report import tables
 
-    columns, rows, errors = tables.gather(folder)
+    columns, rows, errors = tables.gather(folder, only=only)
     tables.write_table(folder / tables.SUMMARY_TABLE, columns or list(tables.JSON_KEYS), rows)
     if figures and rows:
         png = None if early is None else early.png(rows)
         if png is not None:
-            tables.atomic_write(folder / "summary.png", lambda tmp: Path(tmp).write_bytes(png))
+            tables.atomic_write(folder / tables.SUMMARY_PNG, lambda tmp: Path(tmp).write_bytes(png))
         else:
             from mdpipe.report import plots
 
-            plots.summary_figure(rows, folder / "summary.png")
+            plots.summary_figure(rows, folder / tables.SUMMARY_PNG)
     counts = Counter(row["class"] for row in rows)
     click.echo(f"{folder / tables.SUMMARY_TABLE}: {len(rows)} target rows from "
                f"{len({row['file'] for row in rows})} captures "
                f"({', '.join(f'{k} {v}' for k, v in sorted(counts.items())) or 'none'}); {len(errors)} failed")
     for _, error in errors:
         click.echo(f"failed: {error}")
+    others = 0 if only is None else tables.folders_beyond(folder, only)
+    if others:
+        click.echo(f"{others} capture folders in {folder} are not of this batch (earlier runs): left out of "
+                   f"{tables.SUMMARY_TABLE} (mdpipe summarize {folder} gathers every one)")
     return len(errors)
 
 
@@ -619,7 +628,7 @@ def batch(inputs, out_dir, workers, scheduler, no_figures, debug, **options):
         kept = sum(o.failed and o.status == "up to date" for o in outcomes)
         click.echo(f"{len(jobs)} captures: {counts['done']} processed, {counts['up to date']} up to date, "
                    f"{counts['failed']} failed" + (f" ({kept} of them unchanged since they failed)" if kept else ""))
-        _gather(out_dir, figures=not no_figures, early=early)
+        _gather(out_dir, figures=not no_figures, early=early, only=[job.folder for job in jobs])
 
     try:
         _run(jobs, on_outcome=tally, debug=debug, progress=progress, workers=workers, scheduler=scheduler,

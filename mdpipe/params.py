@@ -340,12 +340,15 @@ class ProcessParams:
             raise ParameterError(f"min_range_m={self.min_range_m!r} must lie in [0, max_range_m={self.max_range_m!r})")
         if self.range_m is not None:
             require_positive(range_m=self.range_m)
-        if not 0 < self.false_alarm_probability < 1:
-            raise ParameterError(f"false_alarm_probability={self.false_alarm_probability!r} must lie in (0, 1)")
+        if not MIN_FALSE_ALARM_PROBABILITY <= self.false_alarm_probability < 1:
+            raise ParameterError(f"false_alarm_probability={self.false_alarm_probability!r} must lie in "
+                                 f"[{MIN_FALSE_ALARM_PROBABILITY:g}, 1)")
+        if not 0 < self.threshold_db <= MAX_THRESHOLD_DB:
+            raise ParameterError(f"threshold_db={self.threshold_db!r} must lie in (0, {MAX_THRESHOLD_DB:g}] dB")
         if self.elevation_deg is not None and not -90 <= self.elevation_deg <= 90:
             raise ParameterError(f"elevation_deg={self.elevation_deg!r} must lie in [-90, 90]")
-        if self.n_blades is not None and (int(self.n_blades) != self.n_blades or self.n_blades < 1):
-            raise ParameterError(f"n_blades={self.n_blades!r} must be an integer >= 1")
+        if self.n_blades is not None and (int(self.n_blades) != self.n_blades or not 1 <= self.n_blades <= MAX_BLADES):
+            raise ParameterError(f"n_blades={self.n_blades!r} must be an integer from 1 to {MAX_BLADES}")
         if int(self.max_targets) != self.max_targets or self.max_targets < 1:
             raise ParameterError(f"max_targets={self.max_targets!r} must be an integer >= 1")
         if self.range_window not in RANGE_WINDOWS:
@@ -361,6 +364,9 @@ class ProcessParams:
             value = getattr(self, name)
             if value is not None:
                 require_positive(**{name: value})
+                if value > MAX_STFT_S:
+                    raise ParameterError(f"{name}={value!r} must be at most {MAX_STFT_S:g} s (it is cut to half the "
+                                         "dwell anyway)")
         if self.mains_hz not in MAINS_CHOICES:
             raise ParameterError(f"mains_hz={self.mains_hz!r} must be one of {', '.join(MAINS_CHOICES)}")
         object.__setattr__(self, "transmitters", str(self.transmitters).strip().lower())
@@ -383,6 +389,11 @@ class ProcessParams:
 RANGE_WINDOWS = ("hann", "hamming", "blackman", "boxcar")
 MAINS_CHOICES = ("auto", "50", "60", "none")
 MAX_TRANSMITTERS = 16
+MAX_BLADES = 12  # blades per rotor given (a ducted fan's at most)
+MIN_FALSE_ALARM_PROBABILITY = 1e-12  # a CFAR threshold's inverse gamma stays finite down to here
+MAX_THRESHOLD_DB = 100.0
+MAX_STFT_S = 1e4
+MAX_DOPPLER_LIMIT_HZ = 1e7  # 16 km/s at 94 GHz: beyond any target
 
 
 DOPPLER_LIMIT_MODES = ("auto", "full")
@@ -409,8 +420,9 @@ class FigureParams:
                 raise ParameterError(f"doppler_limits={limits!r} must be auto, full or LOW,HIGH in Hz")
             return
         low, high = (float(v) for v in limits)
-        if not (np.isfinite(low) and np.isfinite(high) and low < high):
-            raise ParameterError(f"doppler_limits=({low:g}, {high:g}) must be finite with LOW < HIGH (Hz)")
+        if not (-MAX_DOPPLER_LIMIT_HZ <= low < high <= MAX_DOPPLER_LIMIT_HZ):
+            raise ParameterError(f"doppler_limits=({low:g}, {high:g}) must have LOW < HIGH within "
+                                 f"+-{MAX_DOPPLER_LIMIT_HZ:g} Hz")
         object.__setattr__(self, "doppler_limits", (low, high))
 
     @classmethod

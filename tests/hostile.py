@@ -126,6 +126,26 @@ def n_two_data(folder):
     return write(folder / "n2.h5", attrs={"N": 2}, data=noise_counts(n_samples=2))
 
 
+def float_overflowing(folder):
+    """float32 samples, one of them 3e38: its square would overflow any arithmetic on it."""
+    data = noise_counts().astype(np.float32)
+    data[3, 3] = 3e38
+    return write(folder / "overflow.h5", data=data)
+
+
+def rxposn_empty(folder):
+    return write(folder / "rxempty.h5", extra=lambda h5: h5.create_dataset("RxPosn", data=h5py.Empty("f8")))
+
+
+def tp_long_double(folder):
+    """Tp stored as a long double (float128), which numpy does not turn into a Python float by itself."""
+    return write(folder / "longdouble.h5", attrs={"Tp": np.longdouble(64e-6)})
+
+
+def big_endian(folder):
+    return write(folder / "bigendian.h5", data=noise_counts().astype(">i2"))
+
+
 def chn1_group(folder):
     return write(folder / "chngroup.h5", data=False, extra=lambda h5: h5.create_group("Chn1"))
 

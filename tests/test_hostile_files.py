@@ -141,6 +141,7 @@ NOTES = [
     (hostile.truth_deep, "ignored /Truth: JSON nested deeper than 32 levels"),
     (hostile.truth_wrong_type, "ignored /Truth: expected_json is a list, not an object"),
     (hostile.truth_dataset, "ignored /Truth: it is a dataset, not a group"),
+    (hostile.rxposn_empty, "ignored /RxPosn: '/RxPosn' holds no data (an empty dataspace)"),
 ]
 
 
@@ -252,3 +253,24 @@ def test_empty_range_gate_is_refused_before_pass_one(tmp_path):
     result = CliRunner().invoke(main, ["process", str(path), "--max-range-m", "2", "--out", str(tmp_path / "out")])
     assert result.exit_code == 2 and result.stderr.strip() == (
         f"Error: {path}: the range gate [1, 2] m holds 0 bin(s) of 3.75 m; widen it")
+
+
+@pytest.mark.parametrize("build", [hostile.tp_long_double, hostile.big_endian])
+def test_unusual_but_valid_number_types_read_as_their_native_twins(tmp_path, build):
+    """A long double attribute and big-endian samples read as a float and native int16 would: the same rows."""
+    path = build(tmp_path)
+    twin = hostile.write(tmp_path / "twin.h5")
+    rows, twin_rows = (process_capture(p, ProcessParams()).rows for p in (path, twin))
+    assert [r["notes"] for r in rows] == [r["notes"] for r in twin_rows]
+    info = CliRunner().invoke(main, ["info", str(path), "--json"])
+    assert info.exit_code == 0 and json.loads(info.output)["params"]["chirp_period_s"] == 64e-6
+
+
+def test_samples_that_would_overflow_are_refused_before_any_arithmetic(tmp_path):
+    """A float32 sample of 3e38 (its square overflows): one line when the chirps are read, no RuntimeWarning."""
+    path = hostile.float_overflowing(tmp_path)
+    result = subprocess.run([MDPIPE, "process", str(path), "--no-figures", "--out", str(tmp_path / "out")],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 2
+    assert result.stderr.strip() == (f"Error: {path}: chirps 0..127 hold a sample of magnitude 3e+38, beyond any ADC's "
+                                     "counts or volts (1e+12); the capture is corrupt")

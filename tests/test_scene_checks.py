@@ -64,7 +64,7 @@ def drone(**rotors):
     (scene(targets=[DRONE | {"body_scatterers": [{"offset_m": [0, 0], "rcs_m2": 0.1}]}]),
      r"^targets\[0\]\.body_scatterers\[0\]\.offset_m: expected a list of 3 numbers"),
     (scene(targets=[{"type": "branch", "position_m": [10, 0, 0], "leaves": -1}]),
-     r"^targets\[0\]\.leaves: must be >= 0, got -1$"),
+     r"^targets\[0\]\.leaves: must be from 0 to 1000, got -1$"),
     (scene(targets=[{"type": [1]}]), r"^targets\[0\]\.type: unknown target type \[1\] \(one of"),
     (scene(targets=[{"type": "bird", "motion": {"position_m": [20, 0, 0]}, "wingbeat_hz": 3, "upper_arm_m": 0.3,
                      "forearm_m": 0.3, "flap_glide": {"flap_s": 1.0}}]),

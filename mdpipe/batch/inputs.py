@@ -12,7 +12,12 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from mdpipe.batch.manifest import MANIFEST_NAME
 from mdpipe.errors import MdpipeError
+from mdpipe.report.tables import SUMMARY_PNG, SUMMARY_TABLE
+
+LOCK_NAME = ".mdpipe.lock"
+OUT_FILES = (MANIFEST_NAME, SUMMARY_TABLE, SUMMARY_PNG)  # written into OUT itself
 
 CAPTURE_SUFFIXES = (".h5", ".hdf5")
 WAV_SUFFIXES = (".wav",)  # searched for where a carrier is given: a folder of captures may hold other sounds
@@ -65,6 +70,9 @@ def find_captures(inputs, *, wav=False):
         else:
             found = [(given, given.stem)]
         for path, key in found:
+            if key in OUT_FILES + (LOCK_NAME,):
+                raise InputsError(f"{path} would be published in OUT/{key}/, a name of the batch's own files in OUT; "
+                                  "rename the capture")
             resolved = path.resolve()
             if key in owner:
                 if owner[key] == resolved:

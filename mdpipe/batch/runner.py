@@ -15,6 +15,7 @@ import contextlib
 import fcntl
 import gc
 import importlib
+import json
 import multiprocessing
 import os
 import select
@@ -31,12 +32,11 @@ from pathlib import Path
 from threadpoolctl import threadpool_limits
 
 from mdpipe.batch import manifest, unit
+from mdpipe.batch.inputs import LOCK_NAME, OUT_FILES
 from mdpipe.process import ranging
 from mdpipe.errors import MdpipeError
 from mdpipe.report import tables
 
-LOCK_NAME = ".mdpipe.lock"
-OUT_FILES = (manifest.MANIFEST_NAME, tables.SUMMARY_TABLE, "summary.png")  # written into OUT itself
 MANIFEST_INTERVAL_S = 1.0  # the manifest is rewritten at most this often during a run (and at its end)
 PRELOAD = ["mdpipe.batch.unit"]
 _LOCK_FDS = set()  # OUT's lock, held by this process: a forked worker closes its copy (it must not keep OUT locked)
@@ -306,6 +306,18 @@ def _save(out_dir, records, notify):
                    "redo the captures it does not list")
 
 
+def _published_input(folder):
+    """The capture whose outputs ``folder`` holds, as its run record names it (resolved), or None."""
+    for record in sorted(Path(folder).glob("*" + tables.RUN_SUFFIX)):
+        try:
+            capture = json.loads(record.read_text(encoding="utf-8")).get("capture")
+        except (OSError, ValueError, AttributeError):
+            continue
+        if isinstance(capture, str):
+            return str(Path(capture).resolve())
+    return None
+
+
 def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify=None, finish=None,
         started=_nothing, analysed=_nothing):
     """Run ``jobs`` (all with one ``out_dir``, or None) under OUT's lock; returns their outcomes.
@@ -325,7 +337,7 @@ def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify
         tables.remove_partials(leftovers)
         records = manifest.load(out_dir)
         for job in jobs:
-            before = records.get(job.key, {}).get("input")
+            before = records.get(job.key, {}).get("input") or _published_input(job.folder)
             if notify is not None and before not in (None, str(Path(job.capture).resolve())):
                 notify(f"Warning: {job.folder} held the outputs of {before}; now those of {job.capture}")
         if track:

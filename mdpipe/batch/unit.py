@@ -108,7 +108,7 @@ def _write_outputs(result, job, folder, staged=None):
     drew them."""
     stem = folder / Path(job.capture).stem
     tables.write_features_csv(result.rows, stem.with_name(stem.name + tables.FEATURES_SUFFIX))
-    tables.write_run_json(stem.with_name(stem.name + ".run.json"), capture=job.capture, params=job.params,
+    tables.write_run_json(stem.with_name(stem.name + tables.RUN_SUFFIX), capture=job.capture, params=job.params,
                           layout=result.layout, radar=result.params)
     if staged is not None:
         for path in sorted(Path(staged).iterdir()):

@@ -112,13 +112,15 @@ def run_scene(draw, out_dir, keep_captures=False):
 def run_all(draws, out_dir, *, jobs=1, keep_captures=False):
     """Records of every drawn scene, in scene order; ``jobs`` worker processes.
 
-    ``out_dir/scenes/`` is emptied of scene files first, so that it holds exactly this run's scenes.
+    ``out_dir/scenes/`` and ``out_dir/captures/`` are emptied of scene and capture files first, so that they hold
+    exactly this run's.
     """
     out_dir = Path(out_dir)
     for sub in (SCENES_DIR, CAPTURES_DIR):
         (out_dir / sub).mkdir(parents=True, exist_ok=True)
-    for stale in (out_dir / SCENES_DIR).glob("*.yaml"):  # scenes.csv will describe this run's scenes only
-        stale.unlink()
+    stale = list((out_dir / SCENES_DIR).glob("*.yaml")) + list((out_dir / CAPTURES_DIR).glob("*.h5"))
+    for path in stale:  # scenes.csv will describe this run's scenes only
+        path.unlink()
     args = [(draw, out_dir, keep_captures) for draw in draws]
     if jobs == 1:
         results = [run_scene(*a) for a in args]

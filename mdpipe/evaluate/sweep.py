@@ -35,6 +35,8 @@ MIN_CHIRPS = 2048          # the range statistics probe at least this many chirp
 MIN_RANGE_M = 2.0          # the target stays beyond this range over the dwell ...
 MAX_RANGE_FRACTION = 0.85  # ... and within this fraction of the largest range of the range FFT
 PLACE_TRIES = 50
+MAX_NUMBER = 2.0 ** 62     # a distribution's bounds (randint draws int64)
+MAX_CLUTTER = 100          # static scatterers a family may draw
 
 
 @dataclass(frozen=True)
@@ -73,10 +75,17 @@ def _clean(value):
     return value
 
 
+def _number(value):
+    """Whether ``value`` is a finite number within int64's reach (not a bool)."""
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and bool(np.isfinite(value)) \
+        and abs(value) < MAX_NUMBER
+
+
 def _pair(spec, name, path):
-    if not isinstance(spec, (list, tuple)) or len(spec) not in (2, 4) or \
-            not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in spec):
-        raise ParameterError(f"{path}: {name} takes a list [a, b] of numbers, got {spec!r}")
+    if not isinstance(spec, (list, tuple)) or len(spec) not in (2, 4) or not all(_number(v) for v in spec):
+        raise ParameterError(f"{path}: {name} takes a list [a, b] of finite numbers, got {spec!r}")
+    if name == "normal" and spec[1] < 0:
+        raise ParameterError(f"{path}: normal takes [mean, sd] with sd >= 0, got {spec!r}")
     if name in ("uniform", "loguniform", "randint") and (len(spec) != 2 or spec[1] < spec[0]):
         raise ParameterError(f"{path}: {name} takes [low, high] with low <= high, got {spec!r}")
     if name == "loguniform" and spec[0] <= 0:
@@ -165,8 +174,12 @@ def radar_block(spec, bands, rng, path, *, max_chirps):
     missing = [k for k in RADAR_KEYS if values[k] is None and k != "n_channels"]
     if missing:
         raise ParameterError(f"{path}.{missing[0]}: missing (a family's radar needs {', '.join(RADAR_KEYS[:-1])})")
-    if values["band"] not in bands:
+    if not isinstance(values["band"], str) or values["band"] not in bands:
         raise ParameterError(f"{path}.band: {values['band']!r} is not in the sweep's bands ({', '.join(bands)})")
+    for key in RADAR_KEYS[1:]:
+        value = values[key]
+        if value is not None and not (_number(value) and value > 0):
+            raise ParameterError(f"{path}.{key}: must draw a finite number > 0, drew {value!r}")
     chirp_period_s = 1.0 / values["prf_hz"]
     ramp_s = RAMP_FRACTION * chirp_period_s
     n_chirps = int(min(max_chirps, max(MIN_CHIRPS, round(values["dwell_s"] * values["prf_hz"]))))
@@ -207,7 +220,12 @@ def clutter_targets(spec, rng, path, *, radar):
     """``count`` static scatterers at drawn ranges, azimuths and RCS."""
     if not spec:
         return []
-    count = int(draw_value(spec.get("count", 0), rng, f"{path}.count"))
+    if not isinstance(spec, dict) or "range_m" not in spec or "rcs_m2" not in spec:
+        raise ParameterError(f"{path}: expected a mapping with count, range_m and rcs_m2 (azimuth_deg optional)")
+    count = draw_value(spec.get("count", 0), rng, f"{path}.count")
+    if not (_number(count) and count == int(count) and 0 <= count <= MAX_CLUTTER):
+        raise ParameterError(f"{path}.count: must draw a whole number from 0 to {MAX_CLUTTER}, drew {count!r}")
+    count = int(count)
     limit_m = MAX_RANGE_FRACTION * _max_range_m(radar)
     targets = []
     for i in range(count):
@@ -287,8 +305,15 @@ def validate_sweep(sweep, source):
     if unknown:
         raise ParameterError(f"{source}: {unknown[0]}: unknown key (known keys: {', '.join(SWEEP_KEYS)}; "
                              "shared YAML anchors go under blocks)")
-    if not isinstance(sweep["n_scenes"], int) or sweep["n_scenes"] < 1:
-        raise ParameterError(f"{source}: n_scenes: must be an integer >= 1, got {sweep['n_scenes']!r}")
+    for key, least in (("n_scenes", 1), ("seed", 0), ("max_chirps", 1)):
+        value = sweep.get(key, least)
+        if isinstance(value, bool) or not isinstance(value, int) or not least <= value < MAX_NUMBER:
+            raise ParameterError(f"{source}: {key}: must be an integer >= {least}, got {value!r}")
+    bands = sweep["bands"]
+    if not isinstance(bands, dict) or not bands or not all(
+            isinstance(k, str) and _number(v) and v > 0 for k, v in bands.items()):
+        raise ParameterError(f"{source}: bands: expected a mapping of band names to start frequencies in Hz, got "
+                             f"{bands!r}")
     if not isinstance(sweep["families"], dict) or not sweep["families"]:
         raise ParameterError(f"{source}: families: expected a mapping of family names to families")
     for name, family in sweep["families"].items():
@@ -298,8 +323,11 @@ def validate_sweep(sweep, source):
         if unknown:
             raise ParameterError(f"{source}: families.{name}.{unknown[0]}: unknown key "
                                  f"(known keys: {', '.join(FAMILY_KEYS)})")
-        if not float(family.get("weight", 1.0)) > 0:
-            raise ParameterError(f"{source}: families.{name}.weight: must be > 0")
+        if not isinstance(family["radar"], dict):
+            raise ParameterError(f"{source}: families.{name}.radar: expected a mapping of {', '.join(RADAR_KEYS)}")
+        weight = family.get("weight", 1.0)
+        if not (_number(weight) and weight > 0):
+            raise ParameterError(f"{source}: families.{name}.weight: must be a finite number > 0, got {weight!r}")
     return sweep
 
 

@@ -25,11 +25,12 @@ import h5py
 import numpy as np
 
 from mdpipe.errors import CaptureFormatError, ParameterError
-from mdpipe.io.radarlog import _check_storage, _locate, _scalar, check_regular_file
+from mdpipe.io.radarlog import _check_storage, _locate, _scalar, check_float_samples, check_regular_file
 from mdpipe.params import IQ_LIMITS, IqParams
 
 WAV_SUFFIXES = (".wav",)
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+WAV_HEADER_BYTES = 65536  # the fmt chunk is searched for within this much of a WAV's start
 IQ_DATASET = "IQ"
 # override name -> (IqParams field, meaning, example): the options that supply or replace a recording's values
 IQ_OVERRIDES = {
@@ -43,9 +44,19 @@ CLIPPED_COUNTS = 256  # within this of an integer type's extremes counts as full
 
 
 def _hdf5_signature(path):
+    """Whether ``path`` starts with the HDF5 signature at 0 or after a user block (512, 1024, ... bytes: MATLAB's
+    v7.3 files hold one)."""
     try:
         with open(path, "rb") as handle:
-            return handle.read(len(HDF5_SIGNATURE)) == HDF5_SIGNATURE
+            offset = 0
+            while True:
+                handle.seek(offset)
+                head = handle.read(len(HDF5_SIGNATURE))
+                if head == HDF5_SIGNATURE:
+                    return True
+                if len(head) < len(HDF5_SIGNATURE):
+                    return False
+                offset = 512 if offset == 0 else 2 * offset
     except OSError:
         return False
 
@@ -141,9 +152,39 @@ def _full_scale_share(data):
     return float(np.count_nonzero((data >= info.max - margin) | (data <= info.min + margin)) / max(data.size, 1))
 
 
+def _check_wav_format(path):
+    """Refuse a WAV whose ``fmt `` chunk declares no channel, or a frame size (block align) that is not its channels
+    times its sample bytes (scipy would read a 16-bit stereo file declaring 3 bytes a frame as 8-bit samples)."""
+    with open(path, "rb") as handle:
+        head = handle.read(WAV_HEADER_BYTES)
+    if len(head) < 12 or head[:4] not in (b"RIFF", b"RIFX") or head[8:12] != b"WAVE":
+        return  # not RIFF/WAVE: scipy's reader says so
+    order = "little" if head[:4] == b"RIFF" else "big"
+
+    def number(start, stop):
+        return int.from_bytes(head[start:stop], order)
+
+    offset = 12
+    while offset + 8 <= len(head):
+        size = number(offset + 4, offset + 8)
+        if head[offset:offset + 4] == b"fmt " and offset + 24 <= len(head):
+            channels, block_align, bits = number(offset + 10, offset + 12), number(offset + 20, offset + 22), \
+                number(offset + 22, offset + 24)
+            if channels == 0:
+                raise CaptureFormatError(f"{path}: the WAV header declares 0 audio channels; an I/Q recording holds "
+                                         "an even number, I then Q of each RX")
+            if bits and block_align != channels * -(-bits // 8):
+                raise CaptureFormatError(f"{path}: the WAV header declares {block_align} bytes a frame for {channels} "
+                                         f"channel(s) of {bits}-bit samples ({channels * -(-bits // 8)}); the header "
+                                         "is damaged or forged")
+            return
+        offset += 8 + size + (size & 1)
+
+
 def _read_wav(path, overrides, check, max_file_bytes):
     from scipy.io import wavfile
 
+    _check_wav_format(path)
     size = os.path.getsize(path)
     with _warnings.catch_warnings(record=True) as caught:
         _warnings.simplefilter("always")  # unknown chunks are read past, as players do; a short file is refused below
@@ -262,15 +303,13 @@ def read_iq(path, *, overrides=None, allow_external=False, check=None, max_file_
     """
     path, (params, data, axis_last, layout) = _open(path, overrides, allow_external, check, max_file_bytes)
     clipped = _full_scale_share(data)
+    if np.asarray(data).dtype.kind in "fc":  # before the cast to complex64, which they could overflow
+        check_float_samples(np.asarray(data), f"{path}: its I/Q data", "recording")
     if axis_last is None:
         samples = np.asarray(data, dtype=np.complex64).reshape(data.shape[0], -1)
     else:
         samples = _complex(data, axis_last)
     del data  # a WAV's map closes with its last reference
-    if not np.all(np.isfinite(samples)):
-        bad = int(np.count_nonzero(~np.isfinite(samples)))
-        raise CaptureFormatError(f"{path}: {bad:,} of the I/Q samples are not finite (NaN or infinite); the "
-                                 "recording is corrupt")
     samples *= np.float32(params.full_scale_v_per_lsb)
     notes = []
     if clipped:

@@ -15,6 +15,7 @@ samples).
 """
 
 import json
+import math
 import os
 import re
 import stat
@@ -47,6 +48,7 @@ MAX_TEXT_CHARS = 1 << 20  # /Truth attributes (no larger than the file: attribut
 MAX_JSON_DEPTH = 32
 MAX_LINK_HOPS = 16
 MAX_TX_SEQUENCE = 64  # chirps of one transmit cycle (TxSeq)
+MAX_SAMPLE_MAGNITUDE = 1e12  # float samples beyond any ADC's counts or volts: their squares would overflow float32
 MAX_FILTERED_CHUNK_BYTES = 64 << 20  # a compressed chunk is decoded whole: a small file could ask for 4 GB
 ALLOW_EXTERNAL = "pass --allow-external for a trusted file"
 
@@ -74,7 +76,8 @@ def _scalar(value, name, path):
     array = np.asarray(value)
     if array.size != 1 or array.dtype.kind not in "iuf":
         raise CaptureFormatError(f"{path}: attribute {name!r} must be one number, got {value!r}")
-    return array.reshape(()).item()
+    number = array.reshape(()).item()  # a long double stays numpy's: made a Python float
+    return number if isinstance(number, (int, float)) else float(number)
 
 
 def _read_attributes(attrs, path, overrides):
@@ -94,8 +97,27 @@ def _read_attributes(attrs, path, overrides):
     return prefix, values
 
 
+def check_float_samples(samples, where, what="capture"):
+    """Raise :class:`CaptureFormatError` for float (or complex) ``samples`` that are NaN, infinite, or beyond
+    ``MAX_SAMPLE_MAGNITUDE`` (read before any arithmetic, which they would overflow); ``where`` names them, ``what``
+    the file."""
+    largest = float(np.max(np.abs(samples), initial=0.0))  # NaN if any is
+    if not math.isfinite(largest):
+        raise CaptureFormatError(f"{where} hold NaN or Inf samples; the {what} is corrupt")
+    if largest > MAX_SAMPLE_MAGNITUDE:
+        raise CaptureFormatError(f"{where} hold a sample of magnitude {largest:.3g}, beyond any ADC's counts or "
+                                 f"volts ({MAX_SAMPLE_MAGNITUDE:.0e}); the {what} is corrupt")
+
+
+def file_kind(mode):
+    """What a file of stat ``mode`` is, in words, for one that is not a regular file."""
+    return {stat.S_IFIFO: "a FIFO", stat.S_IFCHR: "a character device", stat.S_IFBLK: "a block device",
+            stat.S_IFDIR: "a folder", stat.S_IFSOCK: "a socket"}.get(stat.S_IFMT(mode), "not a regular file")
+
+
 def check_regular_file(path):
-    """Raise :class:`CaptureFormatError` unless ``path`` is an existing regular file (a FIFO would hang the open)."""
+    """Raise :class:`CaptureFormatError` unless ``path`` is an existing regular file (a FIFO would hang the open, a
+    device never end it)."""
     try:
         mode = os.stat(path).st_mode
     except FileNotFoundError:
@@ -103,9 +125,7 @@ def check_regular_file(path):
     except OSError as exc:
         raise CaptureFormatError(f"{path}: cannot be read ({exc.strerror})") from None
     if not stat.S_ISREG(mode):
-        kind = {stat.S_IFIFO: "a FIFO", stat.S_IFCHR: "a character device", stat.S_IFBLK: "a block device",
-                stat.S_IFDIR: "a folder", stat.S_IFSOCK: "a socket"}.get(stat.S_IFMT(mode), "not a regular file")
-        raise CaptureFormatError(f"{path}: is {kind}; captures are read from regular files only")
+        raise CaptureFormatError(f"{path}: is {file_kind(mode)}; captures are read from regular files only")
 
 
 def _locate(h5, name, path, *, allow_external, shown=None, hops=0):
@@ -152,6 +172,8 @@ def _check_storage(ds, name, path, *, allow_external):
     A virtual dataset or external raw storage reads other files (a missing source reads as fill
     values, a FIFO hangs); missing chunks or a short contiguous block would read as invented fill.
     """
+    if ds.shape is None:
+        raise CaptureFormatError(f"{path}: '/{name}' holds no data (an empty dataspace)")
     declared = int(np.prod(ds.shape, dtype=object)) * ds.dtype.itemsize
     shape = f"{ds.shape} {ds.dtype} ({declared:,} bytes)"
     if ds.is_virtual:
@@ -226,7 +248,7 @@ def _sample_datasets(h5, path, *, allow_external):
                     f"{path}: dataset '/{name}' has shape {ds.shape}; every /ChnK must be (n_chirps, N) "
                     f"like /Chn1 {datasets[0].shape}")
     for name, ds in zip(names, datasets):
-        if ds.dtype not in SAMPLE_DTYPES or ds.dtype != datasets[0].dtype:
+        if ds.dtype.newbyteorder("=") not in SAMPLE_DTYPES or ds.dtype != datasets[0].dtype:
             raise CaptureFormatError(
                 f"{path}: samples are {ds.dtype}; Radarlog samples must be int16 (or float32/float64), "
                 f"the same in every channel ('/{name}')")
@@ -352,7 +374,7 @@ class RadarlogReader:
         else:
             (n_chirps, row_length), n_channels = datasets[0].shape, len(datasets)
         self._n_channels = n_channels
-        dtype = datasets[0].dtype
+        dtype = self._dtype = datasets[0].dtype.newbyteorder("=")  # big-endian samples read as native ones
         self.read_chunk_bytes = max(
             (int(np.prod(ds.chunks)) * dtype.itemsize for ds in datasets if _filtered(ds)), default=0)
         if values["n_samples"] != row_length:
@@ -374,6 +396,10 @@ class RadarlogReader:
             frame_counter = _is_frame_counter(first)
         self._skip = 1 if frame_counter else 0
         values["n_samples"] -= self._skip
+        if self._skip and values["n_samples"] < RADAR_LIMITS["n_samples"][0]:
+            raise CaptureFormatError(f"{path}: {values['n_samples']} samples a chirp are left once the frame counter is "
+                                     f"dropped, under the {RADAR_LIMITS['n_samples'][0]} read; this capture holds no "
+                                     "frame counter (--frame-counter no)")
         try:
             self.params = RadarParams(**values, rx_positions_m=self._rx_positions(n_channels, allow_external))
         except ParameterError as exc:
@@ -471,13 +497,13 @@ class RadarlogReader:
         rows = np.s_[start * self.stride:max(start, stop - 1) * self.stride + (stop > start):self.stride]
         try:
             if self._datasets[0].ndim == 3:
-                block = self._datasets[0][rows][:, channels, :].transpose(1, 0, 2)
+                block = self._datasets[0][rows][:, channels, :].transpose(1, 0, 2).astype(self._dtype, copy=False)
                 if out is None:
                     return np.ascontiguousarray(block)
                 out[...] = block
                 return out
             if out is None:
-                out = np.empty((len(channels), stop - start, self._datasets[0].shape[1]), self._datasets[0].dtype)
+                out = np.empty((len(channels), stop - start, self._datasets[0].shape[1]), self._dtype)
             for row, channel in zip(out, channels):
                 self._datasets[channel].read_direct(row, rows)
             return out
@@ -494,9 +520,8 @@ class RadarlogReader:
         float samples is an error.
         """
         block = self._raw(start, stop, channels, out)[..., self._skip:]
-        if block.dtype.kind == "f" and not np.all(np.isfinite(block)):
-            raise CaptureFormatError(
-                f"{self.path}: chirps {start}..{stop - 1} hold NaN or Inf samples; the capture is corrupt")
+        if block.dtype.kind == "f":
+            check_float_samples(block, f"{self.path}: chirps {start}..{stop - 1}")
         if channels is None and not self._varies:
             with self._lock:
                 if self._first_chirp is None:

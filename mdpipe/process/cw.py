@@ -28,7 +28,7 @@ import numpy as np
 
 from mdpipe.errors import ParameterError
 from mdpipe.io.iq import read_iq
-from mdpipe.process import mains, memory, selection
+from mdpipe.process import impulses, mains, memory, selection
 from mdpipe.process.cfar import gamma_isf
 from mdpipe.process.classify import classify
 from mdpipe.process.doppler import periodic_hann
@@ -288,5 +288,6 @@ def process_recording(path, process, *, overrides=None, allow_external=False):
     label, reason = classify(row, detected=True)
     row["class"] = label
     row["notes"] = "; ".join([f"class: {reason}"] + analysis.notes + notes)
+    row = impulses.impulsive_rows([row], [signal], noise, notes)[0]
     return CaptureResult(str(path), params, layout, None, [], [analysis], [row], noise_power=noise, process=process,
                          detection_test=test)

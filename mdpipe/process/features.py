@@ -749,6 +749,9 @@ def _chopping_from_flash_rate(flash_rate_hz, *, n_blades, alternating):
     return np.array([flash_rate_hz / 2 if odd else flash_rate_hz])
 
 
+PHASED_ROTORS = 4  # rotors at one rate, phases apart, flash this many times per chopping period (a quadrotor)
+
+
 def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blades, dwell_s, halfwidth_mps,
              dense_half_width_hz, body_found=True, elevation_deg=None, ramp=None, sides=None):
     """Rotation of the rotors from their line combs and from the echo's period (or flash times when aliased).
@@ -799,6 +802,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     within an unaliased band,
     one of single lines each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the
     flashes' Doppler sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
+    A chopping frequency the dwell holds fewer than ``2 PHASED_ROTORS`` periods of is withheld as ``dwell_short``: a
+    quadrotor's four rotors at one rate, phases apart, flash four times per chopping period, and a dwell that does not
+    hold that period twice cannot tell (the Phantom 4 of paper config 7 seen 8 ms: its rotors' flashes 1.46 ms apart
+    read as a comb at 683 Hz for 140, `ok`).
     """
     slowest_hz = max(combs.MIN_CHOP_HZ, 2.0 / dwell_s)  # two chopping periods in the dwell
     if slowest_hz >= combs.MAX_CHOP_HZ / 2:
@@ -1006,6 +1013,11 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         note = f"chopping frequency uncertain and rotation not estimable: {conflict}"
         return Rotation(Measured(chopping_value, "blade_conflict", note), withheld("blade_conflict", note),
                         n_blades=blades, n_blades_source=source)
+    if chopping_value * dwell_s < 2 * PHASED_ROTORS:
+        note = (f"rotation not estimable: a chopping frequency of {chopping_value:.4g} Hz read on {dwell_s:.3g} s could be "
+                f"the flashes of up to {PHASED_ROTORS} rotors turning at one rate, their phases apart, within a "
+                f"chopping period up to {PHASED_ROTORS} times longer, which the dwell does not hold twice")
+        return Rotation.withheld("dwell_short", note)
     chopping = Measured(chopping_value)
     if source == "assumed" and flashes_only and not alternating:
         chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes an even blade count (an "

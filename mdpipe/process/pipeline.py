@@ -8,7 +8,8 @@ import numpy as np
 from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
 from mdpipe.io.iq import is_iq_recording
-from mdpipe.process import flashes, images, interference, memory, ranging, saturation, selection, transmitters
+from mdpipe.process import (flashes, images, impulses, interference, memory, ranging, saturation, selection,
+                            transmitters)
 from mdpipe.process.classify import classify
 from mdpipe.process.cw import process_recording
 from mdpipe.process.features import RangeTrack, analyse_target
@@ -270,6 +271,8 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         levels_db = [detection.snr_db if row["snr_db"] is None else row["snr_db"]
                      for detection, row in zip(detections, rows)]
         rows = saturation.saturated_rows(rows, levels_db, clipped, capture_notes)
-        rows = interference.crossed_rows(rows, [signal for _, signal, _, _ in targets], common, capture_notes)
+        signals = [signal for _, signal, _, _ in targets]
+        rows = interference.crossed_rows(rows, signals, common, capture_notes)
+        rows = impulses.impulsive_rows(rows, signals, noise, capture_notes)
     return CaptureResult(str(path), params, layout, stats, detections, analyses, rows, noise_power=noise,
                          process=process, detection_test=test)

@@ -28,7 +28,9 @@ JSON_KEYS = ("file", "range_m", "class", "doppler_bw_hz", "doppler_bw_mps", "cho
              "notes")
 ERROR_SUFFIX = ".error.txt"
 FEATURES_SUFFIX = ".features.csv"
+RUN_SUFFIX = ".run.json"
 SUMMARY_TABLE = "features.csv"
+SUMMARY_PNG = "summary.png"
 PARTIAL_PREFIX = ".mdpipe-partial-"  # temporary folders and files; removed by the next run on the same folder
 
 
@@ -176,7 +178,8 @@ def _clean(value):
     if isinstance(value, float):
         return float(f"{value:.{SIGNIFICANT_DIGITS}g}") if math.isfinite(value) else None
     if hasattr(value, "item"):
-        return _clean(value.item())
+        item = value.item()
+        return _clean(item if type(item) is not type(value) else float(item))  # a long double's item is itself
     return value
 
 
@@ -209,17 +212,24 @@ def write_run_json(path, *, capture, params, layout, radar):
     atomic_write(path, lambda tmp: Path(tmp).write_text(json.dumps(record, indent=1, default=str)))
 
 
+LINE_ESCAPES = str.maketrans({"\t": "\\t", "\n": "\\n", "\r": "\\r"})
+
+
 def write_error(path, capture, message, traceback_text=None):
-    """``capture<TAB>message`` on the first line (what :func:`summarize` reads), then the traceback if any."""
-    text = f"{capture}\t{message}\n" + (f"\n{traceback_text}" if traceback_text else "")
+    """``capture<TAB>message`` on the first line (what :func:`summarize` reads; a tab, newline or return in either
+    written as its escape), then the traceback if any."""
+    first = "\t".join(str(part).translate(LINE_ESCAPES) for part in (capture, message))
+    text = f"{first}\n" + (f"\n{traceback_text}" if traceback_text else "")
     atomic_write(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
 
 
-def gather(folder):
+def gather(folder, *, only=None):
     """Every ``*.features.csv`` under ``folder`` (outside temporary folders), and the captures that failed.
 
     The cells stay the text their per-capture CSVs hold, so types survive the merge by construction (a bool
     stays ``True``, an integer ``0``; a null stays empty). Uses the csv module only: pandas would add 0.8 s.
+    ``only``: the capture folders to read (a batch's own; :func:`folders_beyond` counts the others). A table that
+    cannot be read (not UTF-8, a field over the csv module's limit) counts as a failed capture, named.
 
     Returns
     -------
@@ -228,20 +238,36 @@ def gather(folder):
     rows : list of dict
         One per target row, column -> text ("" where null or absent).
     errors : list of (str, str)
-        (capture, one-line error) per ``*.error.txt``.
+        (capture, one-line error) per ``*.error.txt`` and unreadable table.
     """
-    columns, rows = {}, []
+    columns, rows, errors = {}, [], []
     tables, failures = _published(folder, FEATURES_SUFFIX, ERROR_SUFFIX)
+    kept = None if only is None else {Path(f) for f in only}
     for path in tables:
-        with open(path, newline="", encoding="utf-8") as fh:
-            reader = csv.DictReader(fh)
-            columns.update(dict.fromkeys(reader.fieldnames or ()))
-            rows.extend(reader)
-    errors = []
+        if kept is not None and Path(path).parent not in kept:
+            continue
+        try:
+            with open(path, newline="", encoding="utf-8") as fh:
+                reader = csv.DictReader(fh)
+                found = list(reader)
+                columns.update(dict.fromkeys(reader.fieldnames or ()))
+        except (csv.Error, UnicodeDecodeError, OSError) as exc:
+            errors.append((str(path), f"{path}: its table cannot be read ({' '.join(str(exc).split())}); "
+                                      "process its capture again"))
+            continue
+        rows.extend(found)
     for path in failures:
+        if kept is not None and Path(path).parent not in kept:
+            continue
         with open(path, encoding="utf-8", errors="replace") as fh:
             errors.append(tuple((fh.readline().rstrip("\n").split("\t", 1) + [""])[:2]))
     return list(columns), rows, errors
+
+
+def folders_beyond(folder, only):
+    """How many capture folders under ``folder`` hold tables or errors but are not among ``only``."""
+    tables, failures = _published(folder, FEATURES_SUFFIX, ERROR_SUFFIX)
+    return len({Path(path).parent for path in list(tables) + list(failures)} - {Path(f) for f in only})
 
 
 def gathered_rows(folder, replaced):

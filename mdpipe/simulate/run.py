@@ -3,6 +3,7 @@
 import dataclasses
 import os
 import shutil
+import stat
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -10,7 +11,9 @@ from threadpoolctl import threadpool_limits
 
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
+from mdpipe.params import RADAR_LIMITS
 from mdpipe.io import INT16_FULL_SCALE, CaptureWriter
+from mdpipe.io.radarlog import file_kind
 from mdpipe.process.memory import GIB
 from mdpipe.simulate.targets import module_of, target_echo
 from mdpipe.simulate.noise import noise_streams, standard_normal_f32
@@ -110,6 +113,9 @@ def check_output(scene, out_path, *, overwrite, chunk_chirps=CHUNK_CHIRPS, max_m
         raise ParameterError(f"{out_path}: is a folder; name the output file")
     if os.path.lexists(out_path) and not overwrite:
         raise ParameterError(f"{out_path}: exists; pass --force to replace it")
+    mode = os.lstat(out_path).st_mode if os.path.lexists(out_path) else None
+    if mode is not None and not (stat.S_ISREG(mode) or stat.S_ISLNK(mode)):
+        raise ParameterError(f"{out_path}: is {file_kind(mode)}; --force replaces files only, choose another -o")
     size = n_chirps * radar.n_samples * radar.n_channels * 2  # int16 samples
     free = shutil.disk_usage(folder).free
     if size > free:
@@ -162,6 +168,12 @@ def simulate_to_file(scene, out_path, *, scene_yaml, progress=None, chunk_chirps
     else:
         peak_v = peak_signal_v(plans) + NOISE_PEAK_SIGMAS * sigma_v
         lsb_v = peak_v / INT16_FULL_SCALE if peak_v > 0 else 1.0
+    low, high = RADAR_LIMITS["full_scale_v_per_lsb"][:2]
+    if not low <= lsb_v <= high:  # the file's FuSca could not hold it
+        why = ("adc.full_scale_v" if scene.adc.full_scale_v is not None
+               else f"the echoes and noise reaching {lsb_v * INT16_FULL_SCALE:.3g} V")
+        raise ParameterError(f"the ADC would need {lsb_v:.3g} V per count ({why}), outside {low:g}-{high:g} V; check "
+                             "the targets' rcs_m2, noise.sigma_v and adc.full_scale_v")
     streams = noise_streams(scene.seed, radar.n_channels)
     sigma_lsb = sigma_v / lsb_v
     clipped = 0

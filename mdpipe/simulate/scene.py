@@ -5,7 +5,9 @@ Lengths in metres, angles in degrees (``_deg``), rates in Hz; positions and velo
 """
 
 import dataclasses
+import os
 import re
+import stat
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -13,6 +15,7 @@ import numpy as np
 import yaml
 
 from mdpipe.errors import ParameterError
+from mdpipe.io.radarlog import file_kind
 from mdpipe.params import RadarParams, transmit_cycle
 from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS
 from mdpipe.simulate.plausibility import check_scene
@@ -172,7 +175,7 @@ class Fidelity:
                                                                   "one of auto, on, off, exact"))
     range_migration: str = field(default="auto", metadata=check(lambda v: v in ("auto", "on", "off"),
                                                                   "one of auto, on, off"))
-    tolerance: float = field(default=1e-4, metadata=check(lambda v: 0 < v < 1, "in (0, 1)"))
+    tolerance: float = field(default=1e-4, metadata=check(lambda v: 1e-9 <= v < 1, "in [1e-9, 1)"))
 
 
 @dataclass(frozen=True)
@@ -220,7 +223,20 @@ def scene_from_mapping(data):
 
 
 class SceneLoader(yaml.SafeLoader):
-    """Safe YAML loader that reads floats by the YAML 1.2 rule, so ``76e9`` and ``1.948e-3`` are numbers."""
+    """Safe YAML loader that reads floats by the YAML 1.2 rule, so ``76e9`` and ``1.948e-3`` are numbers, and refuses
+    a key given twice in one mapping (the last would win unseen; a key a ``<<`` merge brings may be given again)."""
+
+    def construct_mapping(self, node, deep=False):
+        if isinstance(node, yaml.MappingNode):
+            seen = set()
+            for key_node, _ in node.value:
+                if key_node.tag == "tag:yaml.org,2002:merge" or not isinstance(key_node, yaml.ScalarNode):
+                    continue
+                if key_node.value in seen:
+                    raise yaml.constructor.ConstructorError(None, None, f"duplicate key {key_node.value!r}",
+                                                            key_node.start_mark)
+                seen.add(key_node.value)
+        return super().construct_mapping(node, deep)
 
 
 SceneLoader.yaml_implicit_resolvers = {k: [r for r in v if r[0] != "tag:yaml.org,2002:float"]
@@ -233,6 +249,12 @@ SceneLoader.add_implicit_resolver(
 
 def load_scene_mapping(path):
     """Read a scene YAML file into a plain mapping (a separate step so CLI overrides apply before validation)."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError:
+        mode = None  # the open below says why
+    if mode is not None and not stat.S_ISREG(mode):  # a FIFO would hang the read, a device never end it
+        raise ParameterError(f"{path}: is {file_kind(mode)}; scenes and sweeps are read from regular files only")
     try:
         with open(path, "rb") as fh:
             raw = fh.read(MAX_SCENE_BYTES + 1)

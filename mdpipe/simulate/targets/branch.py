@@ -26,6 +26,9 @@ SWAY_SPEED_SHARES = np.array([0.6, 0.25, 0.15])  # of the speed bound 2 pi f A; 
 LEAF_FREQUENCY_RANGE = (0.8, 1.0)
 
 
+MAX_LEAVES = 1000
+
+
 @dataclass(frozen=True)
 class Target:
     """A branch (one scatterer) with leaves (point scatterers), swaying in the wind."""
@@ -35,7 +38,7 @@ class Target:
     rcs_m2: float = field(default=0.5, metadata=POSITIVE)
     sway_amplitude_m: float = field(default=0.05, metadata=NON_NEGATIVE)
     sway_hz: float = field(default=0.8, metadata=POSITIVE)
-    leaves: int = field(default=20, metadata=check(lambda v: v >= 0, ">= 0"))
+    leaves: int = field(default=20, metadata=check(lambda v: 0 <= v <= MAX_LEAVES, f"from 0 to {MAX_LEAVES}"))
     leaf_flutter_hz: float = field(default=4.0, metadata=POSITIVE)
     leaf_flutter_m: float = field(default=0.01, metadata=NON_NEGATIVE)
     leaf_rcs_m2: float = field(default=1e-3, metadata=POSITIVE)

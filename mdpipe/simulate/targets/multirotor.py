@@ -24,20 +24,26 @@ MAX_BLADE_LENGTH_M = 2.0
 MAX_RATE_WANDER_FRACTION = 0.3
 
 
+MAX_ROTORS = 16            # a coaxial octocopter's
+MAX_BLADES = 12            # blades per rotor: a ducted fan's at most (the memory of the echo grows with them)
+MAX_POINTS_PER_BLADE = 256
+
+
 @dataclass(frozen=True)
 class Rotors:
     """The rotors of a multirotor; per-rotor entries take one value for all or one per rotor."""
 
-    count: int = field(metadata=check(lambda v: v >= 1, ">= 1"))
+    count: int = field(metadata=check(lambda v: 1 <= v <= MAX_ROTORS, f"from 1 to {MAX_ROTORS}"))
     blade_length_m: float = field(metadata=POSITIVE)
     rev_per_s: tuple[float, ...] = field(metadata=check(lambda v: v != 0, "non-zero (sign = spin direction)"))
-    blades: int = field(default=2, metadata=check(lambda v: v >= 1, ">= 1"))
+    blades: int = field(default=2, metadata=check(lambda v: 1 <= v <= MAX_BLADES, f"from 1 to {MAX_BLADES}"))
     root_m: float = field(default=0.0, metadata=NON_NEGATIVE)
     arm_m: float = field(default=0.0, metadata=NON_NEGATIVE)
     layout_deg: Optional[tuple[float, ...]] = None
     phase_deg: tuple[float, ...] = (0.0,)
     blade_rcs_m2: float = field(default=1e-3, metadata=POSITIVE)
-    points_per_blade: Optional[int] = field(default=None, metadata=check(lambda v: v >= 1, ">= 1"))
+    points_per_blade: Optional[int] = field(default=None, metadata=check(lambda v: 1 <= v <= MAX_POINTS_PER_BLADE,
+                                                                          f"from 1 to {MAX_POINTS_PER_BLADE}"))
     blade_profile: Optional[str] = field(default=None, metadata=check(lambda v: v in rotor.BLADE_PROFILES,
                                                                       "one of uniform, tapered, points"))
     tip_reflectivity: float = field(default=0.3, metadata=check(lambda v: 0 <= v <= 1, "within [0, 1]"))

@@ -1,0 +1,68 @@
+"""Echoes that are nothing but one or two samples over the noise: an impulse (a glitch, a click), not a target.
+
+A glitch in the receiver (one ADC sample far off; a sound card's click in a CW recording) is broadband: read as a
+target's echo it fills the whole Doppler span, which reads as a drone's aliased blades (a CW recording of noise with
+one sample 1000 times the noise's amplitude read as a drone, SNR 17 dB; a float capture of 128 chirps with one sample
+at 1e10 read four movers). A target's moving echo lasts: a body line over the dwell, blades flashing every chopping
+period, wings beating. Its strongest samples may hold most of its power (a 94 GHz drone's flashes caught at their
+peaks by a CW receiver sampling at 11.8 kHz: two samples held 62 %), but its other samples stand over the noise too.
+An echo whose ``IMPULSE_SAMPLES`` strongest samples stand ``MIN_EXCESS_SIGMAS`` standard deviations of the noise's
+summed power over what noise puts in its strongest samples, while its other samples do not stand that far over the
+noise, is read as an impulse: class ``none``, every feature but its SNR withheld as ``impulse``.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from mdpipe.process.features import read_as, withheld_row
+
+IMPULSE_SAMPLES = 2
+MIN_EXCESS_SIGMAS = 10.0  # power over the noise, in standard deviations of n noise samples' summed power
+EULER_GAMMA = 0.5772156649015329
+
+
+@dataclass(frozen=True)
+class Impulse:
+    """The power over the noise in an echo's strongest samples and in the others, in standard deviations of the
+    noise's summed power over the echo's samples."""
+
+    strongest_sigmas: float
+    others_sigmas: float
+
+    @property
+    def found(self):
+        return self.strongest_sigmas >= MIN_EXCESS_SIGMAS and self.others_sigmas < MIN_EXCESS_SIGMAS
+
+
+def impulse(signal, noise_power):
+    """The :class:`Impulse` reading of ``signal`` (its mean removed; ``noise_power`` per sample).
+
+    Noise's strongest two of n exponential powers average ``2 H_n - 1`` times its mean (H_n the harmonic number);
+    the others then average a little under it (taken as the mean: the test errs towards a target)."""
+    power = np.abs(np.asarray(signal) - np.mean(signal)) ** 2
+    n = len(power)
+    if n <= IMPULSE_SAMPLES or noise_power <= 0:
+        return Impulse(0.0, 0.0)
+    sigma = math.sqrt(n) * noise_power
+    top = float(np.partition(power, n - IMPULSE_SAMPLES)[-IMPULSE_SAMPLES:].sum())
+    harmonic = math.log(n) + EULER_GAMMA + 1.0 / (2 * n)
+    noise_top = (IMPULSE_SAMPLES * harmonic - IMPULSE_SAMPLES * (IMPULSE_SAMPLES - 1) / 2) * noise_power
+    others = float(power.sum()) - top - (n - IMPULSE_SAMPLES) * noise_power
+    return Impulse((top - noise_top) / sigma, others / sigma)
+
+
+def impulsive_rows(rows, signals, noise_power, capture_notes=()):
+    """The target rows of one capture or recording (``signals``: each target's slow time), those whose echo is an
+    impulse withheld as ``impulse``; the others as they are."""
+    out = []
+    for row, signal in zip(rows, signals):
+        reading = impulse(signal, noise_power)
+        if row["target"] is not None and reading.found:
+            note = (f"class: an impulse, not a target: this echo's {IMPULSE_SAMPLES} strongest samples stand "
+                    f"{reading.strongest_sigmas:.3g} standard deviations over the noise, its others within "
+                    f"{MIN_EXCESS_SIGMAS:g} of it (a glitch or a click; a target's echo lasts); {read_as(row)}")
+            row = withheld_row(row, status="impulse", note=note, capture_notes=capture_notes)
+        out.append(row)
+    return out
