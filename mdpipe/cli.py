@@ -18,7 +18,7 @@ from mdpipe import __version__
 from mdpipe.errors import MdpipeError, one_line
 from mdpipe.io import open_capture
 from mdpipe.io.radarlog import ATTRIBUTES
-from mdpipe.params import MAINS_CHOICES, MAX_BLADES, RANGE_WINDOWS, FigureParams, ProcessParams
+from mdpipe.params import MAINS_CHOICES, MAX_BLADES, RANGE_WINDOWS, FigureParams, ProcessParams, transmit_cycle
 
 PROGRESS_MIN_SAMPLES = 1 << 25
 EXIT_USAGE, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_TERMINATED = 1, 2, 130, 128 + signal.SIGTERM
@@ -293,10 +293,12 @@ def info(capture, as_json, **options):
         return
     with open_with_overrides(capture, options) as cap:
         p, n = cap.params, cap.n_chirps
+        cycle = transmit_cycle(cap.tx_sequence or (1,))
         derived = {
             "range_bin_m": p.range_bin_m, "max_range_m": p.max_range_m, "wavelength_m": p.wavelength_m,
             "doppler_span_hz": p.doppler_span_hz, "velocity_span_mps": p.velocity_span_mps,
             "duration_s": p.duration_s(n), "n_chirps": n, "n_channels": p.n_channels, "n_samples": p.n_samples,
+            "tx_sequence": list(cap.tx_sequence), "transmit_cycle": cycle,
         }
         if as_json:
             from mdpipe.report.tables import finite_json
@@ -315,6 +317,11 @@ def info(capture, as_json, **options):
         click.echo(f"  range bin {p.range_bin_m:.4g} m, max range {p.max_range_m:.5g} m")
         click.echo(f"  Doppler span {p.doppler_span_hz:.6g} Hz (+-{p.doppler_span_hz / 2:.6g} Hz) = "
                    f"{p.velocity_span_mps:.4g} m/s at lambda {p.wavelength_m * 1e3:.4g} mm")
+        if cycle > 1:
+            one = p.every(cycle)
+            click.echo(f"  transmitters in turn: TxSeq {list(cap.tx_sequence)}, a cycle of {cycle} chirps: each "
+                       f"transmitter's chirps at {one.prf_hz:.6g} Hz, Doppler span +-{one.doppler_span_hz / 2:.6g} Hz "
+                       "(what process reads)")
         for warning in cap.warnings:
             click.echo(f"  note: {warning}")
         if cap.truth:
@@ -580,8 +587,9 @@ def _gather(folder, *, figures, early=None, only=None):
         click.echo(f"failed: {error}")
     others = 0 if only is None else tables.folders_beyond(folder, only)
     if others:
-        click.echo(f"{others} capture folders in {folder} are not of this batch (earlier runs): left out of "
-                   f"{tables.SUMMARY_TABLE} (mdpipe summarize {folder} gathers every one)")
+        click.echo(f"{others} capture folder{'s' if others > 1 else ''} in {folder} {'are' if others > 1 else 'is'} "
+                   f"not of this batch (earlier runs): left out of {tables.SUMMARY_TABLE} (mdpipe summarize {folder} "
+                   "gathers every one)")
     return len(errors)
 
 

@@ -48,6 +48,11 @@ RADAR_LIMITS = {
 }
 
 
+MAX_TRANSMITTERS = 16  # transmitters a radar's chirps may cycle through
+MAX_TX_SEQUENCE = 64   # chirps of one transmit cycle (TxSeq)
+MAX_BLADES = 12        # blades per rotor (a ducted fan's at most)
+
+
 def transmit_cycle(sequence):
     """Chirps per transmit cycle of ``sequence`` (``TxSeq``: the transmitter of each chirp, in turn): its shortest
     repeat, 1 where it holds one transmitter (every chirp alike). A cycle ``[1, 2]`` puts each transmitter's chirps
@@ -388,8 +393,6 @@ class ProcessParams:
 
 RANGE_WINDOWS = ("hann", "hamming", "blackman", "boxcar")
 MAINS_CHOICES = ("auto", "50", "60", "none")
-MAX_TRANSMITTERS = 16
-MAX_BLADES = 12  # blades per rotor given (a ducted fan's at most)
 MIN_FALSE_ALARM_PROBABILITY = 1e-12  # a CFAR threshold's inverse gamma stays finite down to here
 MAX_THRESHOLD_DB = 100.0
 MAX_STFT_S = 1e4

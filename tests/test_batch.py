@@ -457,9 +457,10 @@ def test_the_folder_summary_is_drawn_before_the_last_figures(tmp_path, captures,
 
 
 def test_an_early_summary_is_kept_only_for_the_rows_it_was_drawn_from(tmp_path):
-    """The summary drawn early is given for exactly the rows it was drawn from: the rows of OUT's tables as they
-    stand (an earlier run's capture), with the analysed captures' rows in place of their tables. Rows that
-    differ at the end (a capture whose outputs could not be written, a table changed meanwhile) get none."""
+    """The summary drawn early is given for exactly the rows it was drawn from: the batch's captures' rows (an
+    earlier run's capture in OUT left out, as the batch's summary leaves it), the analysed captures' in place of their
+    tables. Rows that differ at the end (a capture whose outputs could not be written, a table changed meanwhile) get
+    none."""
     from mdpipe.batch.summary import EarlySummary
     from mdpipe.params import ProcessParams
     from mdpipe.report import plots
@@ -477,9 +478,10 @@ def test_an_early_summary_is_kept_only_for_the_rows_it_was_drawn_from(tmp_path):
     early.analysed(steps[0])
     assert early.thread is None  # one capture is still being analysed
     early.analysed(steps[1])
-    _, rows, _ = tables.gather(tmp_path)
-    assert [row["class"] for row in rows] == ["bird", "drone", "none"]  # a, b, earlier: the order of their paths
+    _, rows, _ = tables.gather(tmp_path, only=[j.folder for j in jobs])
+    assert [row["class"] for row in rows] == ["bird", "drone"]  # a, b: the order of their paths; not the earlier run's
     assert early.png(rows) == plots.summary_png(rows)
+    assert early.png(tables.gather(tmp_path)[1]) is None  # (with the earlier run's row)
     changed = [dict(row, **{"class": "bird"}) if row["class"] == "drone" else row for row in rows]
     assert early.png(changed) is None
 

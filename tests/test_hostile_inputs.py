@@ -67,6 +67,9 @@ def test_a_capture_named_like_the_batchs_own_files_is_refused(tmp_path):
     result = CliRunner().invoke(main, ["batch", str(folder), "--out", str(tmp_path / "out"), "--no-figures"])
     assert result.exit_code == 1
     assert "would be published in OUT/features.csv/, a name of the batch's own files in OUT" in result.output
+    (folder / "features.csv.h5").rename(folder / ".mdpipe-partial-a.h5")
+    result = CliRunner().invoke(main, ["batch", str(folder), "--out", str(tmp_path / "out"), "--no-figures"])
+    assert result.exit_code == 1 and "(or of its temporary ones, .mdpipe-partial-*)" in result.output
 
 
 def test_batch_summary_holds_this_batchs_captures_and_names_the_others(tmp_path):
@@ -79,7 +82,7 @@ def test_batch_summary_holds_this_batchs_captures_and_names_the_others(tmp_path)
     result = CliRunner().invoke(main, ["batch", str(folder), "--out", str(out), "--no-figures", "-j", "1"])
     assert result.exit_code == 0
     assert "features.csv: 2 target rows from 2 captures (bird 1, drone 1)" in result.output
-    assert "1 capture folders in" in result.output and "are not of this batch (earlier runs)" in result.output
+    assert "1 capture folder in" in result.output and "is not of this batch (earlier runs)" in result.output
 
 
 def test_an_unreadable_table_fails_its_capture_in_the_summary_not_the_command(tmp_path):
@@ -191,7 +194,9 @@ def test_a_click_in_a_cw_recording_is_an_impulse_not_a_drone(tmp_path):
         h5["IQ"] = np.stack([x.real, x.imag], -1)
     row = process_capture(path, ProcessParams()).rows[0]
     assert row["class"] == "none" and row["chopping_freq_hz_status"] == "impulse"
-    assert "class: an impulse, not a target: this echo's 2 strongest samples stand" in row["notes"]
+    assert "class: an impulse, not a target: this echo's 2 strongest samples and the 4 beside each stand" in row["notes"]
+    assert impulses.impulse(x, 1.0).found
+    x[7001:7004] += [300.0, 60.0, -20.0]  # ringing through the receiver's filter
     assert impulses.impulse(x, 1.0).found
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from mdpipe.batch.manifest import MANIFEST_NAME
 from mdpipe.errors import MdpipeError
-from mdpipe.report.tables import SUMMARY_PNG, SUMMARY_TABLE
+from mdpipe.report.tables import PARTIAL_PREFIX, SUMMARY_PNG, SUMMARY_TABLE
 
 LOCK_NAME = ".mdpipe.lock"
 OUT_FILES = (MANIFEST_NAME, SUMMARY_TABLE, SUMMARY_PNG)  # written into OUT itself
@@ -70,9 +70,9 @@ def find_captures(inputs, *, wav=False):
         else:
             found = [(given, given.stem)]
         for path, key in found:
-            if key in OUT_FILES + (LOCK_NAME,):
-                raise InputsError(f"{path} would be published in OUT/{key}/, a name of the batch's own files in OUT; "
-                                  "rename the capture")
+            if key in OUT_FILES + (LOCK_NAME,) or any(part.startswith(PARTIAL_PREFIX) for part in key.split("/")):
+                raise InputsError(f"{path} would be published in OUT/{key}/, a name of the batch's own files in OUT "
+                                  f"(or of its temporary ones, {PARTIAL_PREFIX}*); rename the capture")
             resolved = path.resolve()
             if key in owner:
                 if owner[key] == resolved:

@@ -12,7 +12,7 @@ import os
 from pathlib import Path
 
 from mdpipe import __version__
-from mdpipe.io.radarlog import check_regular_file
+from mdpipe.io.files import check_regular_file
 from mdpipe.report.tables import atomic_write
 
 MANIFEST_NAME = "manifest.json"
@@ -23,7 +23,7 @@ IDENTITY = ("input", "size_bytes", "mtime_ns", "sha256", "mdpipe_version", "sett
 
 def fingerprint(path):
     """Size (bytes), modification time (ns) and SHA-256 of the file at ``path``, hashed as a stream; a path that is
-    not a regular file (a FIFO, a device) is refused first (:func:`mdpipe.io.radarlog.check_regular_file`)."""
+    not a regular file (a FIFO, a device) is refused first (:func:`mdpipe.io.files.check_regular_file`)."""
     check_regular_file(path)
     digest = hashlib.sha256()
     with open(path, "rb") as fh:

@@ -15,7 +15,6 @@ import contextlib
 import fcntl
 import gc
 import importlib
-import json
 import multiprocessing
 import os
 import select
@@ -306,18 +305,6 @@ def _save(out_dir, records, notify):
                    "redo the captures it does not list")
 
 
-def _published_input(folder):
-    """The capture whose outputs ``folder`` holds, as its run record names it (resolved), or None."""
-    for record in sorted(Path(folder).glob("*" + tables.RUN_SUFFIX)):
-        try:
-            capture = json.loads(record.read_text(encoding="utf-8")).get("capture")
-        except (OSError, ValueError, AttributeError):
-            continue
-        if isinstance(capture, str):
-            return str(Path(capture).resolve())
-    return None
-
-
 def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify=None, finish=None,
         started=_nothing, analysed=_nothing):
     """Run ``jobs`` (all with one ``out_dir``, or None) under OUT's lock; returns their outcomes.
@@ -337,7 +324,7 @@ def run(jobs, *, workers=1, scheduler=None, track=False, on_outcome=None, notify
         tables.remove_partials(leftovers)
         records = manifest.load(out_dir)
         for job in jobs:
-            before = records.get(job.key, {}).get("input") or _published_input(job.folder)
+            before = records.get(job.key, {}).get("input") or tables.published_input(job.folder)
             if notify is not None and before not in (None, str(Path(job.capture).resolve())):
                 notify(f"Warning: {job.folder} held the outputs of {before}; now those of {job.capture}")
         if track:

@@ -1,6 +1,6 @@
 """The folder's summary figure drawn while a pool still draws the captures' own figures.
 
-A batch ends with OUT/summary.png, drawn from every table in OUT. Drawn after the last capture, it is
+A batch ends with OUT/summary.png, drawn from its captures' tables in OUT. Drawn after the last capture, it is
 time the pool's workers wait out; but it needs only the captures' rows, which are known once every
 capture of the run is analysed (or up to date, or failed), before the last figures are drawn. It is drawn
 then, in a thread of the batch's process (whose core the pool leaves idle as it ends), from the rows the
@@ -24,6 +24,7 @@ class EarlySummary:
     def __init__(self, out_dir, jobs):
         self.out_dir = out_dir
         self.waiting = {job.key for job in jobs}
+        self.folders = [job.folder for job in jobs]  # the batch's own: its summary's (:func:`tables.gather`)
         self.replaced = {}
         self.thread = None
         self.drawn = None  # (rows, png) once drawn
@@ -46,7 +47,7 @@ class EarlySummary:
         from mdpipe.report import plots
 
         try:
-            rows = tables.gathered_rows(self.out_dir, self.replaced)
+            rows = tables.gathered_rows(self.out_dir, self.replaced, only=self.folders)
             self.drawn = (rows, plots.summary_png(rows) if rows else None)
         except Exception:  # noqa: BLE001 - drawn again at the end, where a failure is reported
             self.drawn = None

@@ -25,7 +25,8 @@ import h5py
 import numpy as np
 
 from mdpipe.errors import CaptureFormatError, ParameterError
-from mdpipe.io.radarlog import _check_storage, _locate, _scalar, check_float_samples, check_regular_file
+from mdpipe.io.files import check_regular_file
+from mdpipe.io.radarlog import _check_storage, _locate, _scalar, check_float_samples
 from mdpipe.params import IQ_LIMITS, IqParams
 
 WAV_SUFFIXES = (".wav",)

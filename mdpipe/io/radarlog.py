@@ -18,7 +18,6 @@ import json
 import math
 import os
 import re
-import stat
 import threading
 from dataclasses import dataclass
 
@@ -27,7 +26,8 @@ import numpy as np
 
 from mdpipe.errors import CaptureFormatError, ParameterError, PlatformError
 from mdpipe.outputs import publish
-from mdpipe.params import RADAR_LIMITS, RadarParams
+from mdpipe.io.files import check_regular_file
+from mdpipe.params import MAX_TX_SEQUENCE, RADAR_LIMITS, RadarParams
 
 # attribute name -> (RadarParams field, meaning with unit, example CLI override)
 ATTRIBUTES = {
@@ -47,7 +47,6 @@ DEFAULT_CHUNK_CHIRPS = 256
 MAX_TEXT_CHARS = 1 << 20  # /Truth attributes (no larger than the file: attributes are not compressed)
 MAX_JSON_DEPTH = 32
 MAX_LINK_HOPS = 16
-MAX_TX_SEQUENCE = 64  # chirps of one transmit cycle (TxSeq)
 MAX_SAMPLE_MAGNITUDE = 1e12  # float samples beyond any ADC's counts or volts: their squares would overflow float32
 MAX_FILTERED_CHUNK_BYTES = 64 << 20  # a compressed chunk is decoded whole: a small file could ask for 4 GB
 ALLOW_EXTERNAL = "pass --allow-external for a trusted file"
@@ -107,25 +106,6 @@ def check_float_samples(samples, where, what="capture"):
     if largest > MAX_SAMPLE_MAGNITUDE:
         raise CaptureFormatError(f"{where} hold a sample of magnitude {largest:.3g}, beyond any ADC's counts or "
                                  f"volts ({MAX_SAMPLE_MAGNITUDE:.0e}); the {what} is corrupt")
-
-
-def file_kind(mode):
-    """What a file of stat ``mode`` is, in words, for one that is not a regular file."""
-    return {stat.S_IFIFO: "a FIFO", stat.S_IFCHR: "a character device", stat.S_IFBLK: "a block device",
-            stat.S_IFDIR: "a folder", stat.S_IFSOCK: "a socket"}.get(stat.S_IFMT(mode), "not a regular file")
-
-
-def check_regular_file(path):
-    """Raise :class:`CaptureFormatError` unless ``path`` is an existing regular file (a FIFO would hang the open, a
-    device never end it)."""
-    try:
-        mode = os.stat(path).st_mode
-    except FileNotFoundError:
-        raise CaptureFormatError(f"{path}: no such file") from None
-    except OSError as exc:
-        raise CaptureFormatError(f"{path}: cannot be read ({exc.strerror})") from None
-    if not stat.S_ISREG(mode):
-        raise CaptureFormatError(f"{path}: is {file_kind(mode)}; captures are read from regular files only")
 
 
 def _locate(h5, name, path, *, allow_external, shown=None, hops=0):
@@ -413,8 +393,13 @@ class RadarlogReader:
     def select_every(self, stride):
         """Read every ``stride``-th stored chirp from the first on (one transmitter's of a cycle of ``stride``):
         ``params`` (Tp times ``stride``) and ``n_chirps`` become theirs."""
-        self.stride = int(stride)
-        self.params = self._stored_params.every(self.stride)
+        try:
+            params = self._stored_params.every(int(stride))
+        except ParameterError:
+            raise ParameterError(f"{self.path}: one transmitter's chirps, one in {stride} (its cycle), lie "
+                                 f"{stride * self._stored_params.chirp_period_s:.3g} s apart, over the "
+                                 f"{RADAR_LIMITS['chirp_period_s'][1]:g} s read; check --transmitters and TxSeq") from None
+        self.stride, self.params = int(stride), params
         self.n_chirps = len(range(0, self._stored_chirps, self.stride))
 
     def _tx_sequence(self):

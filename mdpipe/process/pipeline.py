@@ -192,14 +192,13 @@ def transmit_cycle(reader, process, path):
     if cycle is not None and cycle.cycle > 1:
         reader.select_every(cycle.cycle)
     check_readable(reader, process, path)
-    sums = None if cycle is not None else transmitters.PhaseSums(ranging.range_window(process.range_window,
-                                                                                       reader.params.n_samples))
+    sums = None if cycle is not None else transmitters.PhaseSums(reader.params.n_samples)
     common = interference.common_mode(reader, window=process.range_window, phase_sums=sums)
     if cycle is not None:
         return cycle, common
     test = transmitters.cycle_test(sums)
     if test is None or not test.found:
-        return transmitters.TransmitCycle(1, "single"), common
+        return transmitters.TransmitCycle(1, "single", test), common
     reader.select_every(test.cycle)
     check_readable(reader, process, path)
     return transmitters.TransmitCycle(test.cycle, "found", test), interference.common_mode(reader,
@@ -239,7 +238,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
             test = selection.detection_test(stats, false_alarm_probability=process.false_alarm_probability)
             detections = selection.detect(stats, test, max_targets=process.max_targets, zero_pad=process.zero_pad)
         noise = selection.noise_power(stats) / params.n_channels
-        capture_notes = list(reader.warnings) + [n for n in (cycle.note(params.prf_hz),) if n]
+        capture_notes = list(reader.warnings) + [n for n in (cycle.note(params),) if n]
         clipped = clipped_share(reader, stats)
         if clipped:
             capture_notes.append(f"{clipped:.2%} of the samples sit at the int16 full scale (clipped): "

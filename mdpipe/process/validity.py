@@ -66,8 +66,8 @@ STATUS_CODES = {
                   "(`--mains-hz none` keeps them)"),
     "interference": ("another radar's chirps cross the capture and this echo's power follows their bursts, or its only "
                      "sign of a rotor is flashes of an ambiguous period, as bursts repeat (read as `none`)"),
-    "impulse": ("this echo's power over the noise lies in its 2 strongest samples, its others within the noise: a "
-                "glitch or a click, not a target (read as `none`)"),
+    "impulse": ("this echo's power over the noise lies in its 2 strongest samples and the 4 beside each, its others "
+                "within the noise: a glitch or a click, not a target (read as `none`)"),
 }
 
 

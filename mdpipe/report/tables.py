@@ -206,8 +206,10 @@ def write_features_csv(rows, path):
 
 
 def write_run_json(path, *, capture, params, layout, radar):
-    """Provenance: mdpipe version, processing parameters, input file and what was read from it."""
-    record = {"mdpipe_version": __version__, "capture": str(capture), "layout": layout,
+    """Provenance: mdpipe version, processing parameters, input file (as given, and resolved) and what was read from
+    it."""
+    record = {"mdpipe_version": __version__, "capture": str(capture), "input": str(Path(capture).resolve()),
+              "layout": layout,
               "process_params": asdict(params), "radar": {k: _clean(v) for k, v in asdict(radar).items()}}
     atomic_write(path, lambda tmp: Path(tmp).write_text(json.dumps(record, indent=1, default=str)))
 
@@ -264,18 +266,33 @@ def gather(folder, *, only=None):
     return list(columns), rows, errors
 
 
+def published_input(folder):
+    """The capture whose outputs ``folder`` holds, as its run record names it (resolved), or None."""
+    for record in sorted(Path(folder).glob("*" + RUN_SUFFIX)):
+        try:
+            found = json.loads(record.read_text(encoding="utf-8")).get("input")
+        except (OSError, ValueError, AttributeError):
+            continue
+        if isinstance(found, str):
+            return found
+    return None
+
+
 def folders_beyond(folder, only):
     """How many capture folders under ``folder`` hold tables or errors but are not among ``only``."""
     tables, failures = _published(folder, FEATURES_SUFFIX, ERROR_SUFFIX)
     return len({Path(path).parent for path in list(tables) + list(failures)} - {Path(f) for f in only})
 
 
-def gathered_rows(folder, replaced):
-    """The rows :func:`gather` would read from ``folder`` once the feature tables at the paths of ``replaced``
-    (path -> the rows :func:`write_features_csv` writes there) are written: those tables are taken from
-    ``replaced``, the others read as they stand."""
+def gathered_rows(folder, replaced, *, only=None):
+    """The rows :func:`gather` would read from ``folder`` (``only`` those capture folders) once the feature tables at
+    the paths of ``replaced`` (path -> the rows :func:`write_features_csv` writes there) are written: those tables are
+    taken from ``replaced``, the others read as they stand."""
     rows = []
+    kept = None if only is None else {Path(f) for f in only}
     for path in sorted(set(_published(folder, FEATURES_SUFFIX)[0]) | set(replaced)):
+        if kept is not None and Path(path).parent not in kept:
+            continue
         if path in replaced:
             rows.extend(text_rows(replaced[path]))
             continue

@@ -15,8 +15,8 @@ import numpy as np
 import yaml
 
 from mdpipe.errors import ParameterError
-from mdpipe.io.radarlog import file_kind
-from mdpipe.params import RadarParams, transmit_cycle
+from mdpipe.io.files import file_kind
+from mdpipe.params import MAX_TRANSMITTERS, MAX_TX_SEQUENCE, RadarParams, transmit_cycle
 from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS
 from mdpipe.simulate.plausibility import check_scene
 from mdpipe.simulate.schema import NON_NEGATIVE, POSITIVE, build, check, short_repr
@@ -26,8 +26,6 @@ RADARLOG_RX_SPACING_M = 1.948e-3
 MAX_FRACTIONAL_BANDWIDTH = 0.2
 MAX_SNR_DB = 100.0
 MAX_SCENE_BYTES = 10_000_000
-MAX_TRANSMITTERS = 8       # transmitters a scene may cycle its chirps through
-MAX_TX_SEQUENCE = 64       # chirps of one transmit cycle
 SNR_RANGE = check(lambda v: -MAX_SNR_DB <= v <= MAX_SNR_DB, f"within [-{MAX_SNR_DB:g}, {MAX_SNR_DB:g}] dB")
 
 

@@ -14,6 +14,7 @@ from typing import Optional
 import numpy as np
 
 from mdpipe.errors import ParameterError
+from mdpipe.params import MAX_BLADES
 from mdpipe.physics import kinematics, rotor
 from mdpipe.physics.radar import SPEED_OF_LIGHT_MPS
 from mdpipe.simulate.random_process import SmoothProcess, target_rng
@@ -25,7 +26,6 @@ MAX_RATE_WANDER_FRACTION = 0.3
 
 
 MAX_ROTORS = 16            # a coaxial octocopter's
-MAX_BLADES = 12            # blades per rotor: a ducted fan's at most (the memory of the echo grows with them)
 MAX_POINTS_PER_BLADE = 256
 
 
