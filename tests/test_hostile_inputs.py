@@ -198,6 +198,8 @@ def test_a_click_in_a_cw_recording_is_an_impulse_not_a_drone(tmp_path):
     assert impulses.impulse(x, 1.0).found
     x[7001:7004] += [300.0, 60.0, -20.0]  # ringing through the receiver's filter
     assert impulses.impulse(x, 1.0).found
+    x[7000] += 1e5  # far stronger (in the mean of all samples, it would lift every other one)
+    assert impulses.impulse(x, 1.0).found
 
 
 def test_flashes_caught_in_a_few_samples_are_no_impulse():

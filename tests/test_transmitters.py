@@ -102,6 +102,17 @@ def test_cycles_of_three_and_four_read_from_txseq_and_shown_by_their_harmonics(t
     assert tests[len(sequence)].found and not tests[2].found
 
 
+def test_an_adc_offset_takes_no_echo_from_the_cycle_test(tmp_path):
+    """The MIMO capture (TxSeq deleted) with 1000 counts of ADC offset added: the cycle still found on the tree and the
+    post (the offset's main lobe reaches range bin 1, where it had set the level the echoes are read against)."""
+    path, _ = simulate(tmp_path, mimo_mapping(n_chirps=1536))
+    with h5py.File(path, "r+") as h5:
+        del h5.attrs["TxSeq"]
+        h5["Chn1"][...] = np.clip(h5["Chn1"][()] // 16 + 1000, -32768, 32767).astype(np.int16)
+    test = cycle_tests(path)[2]
+    assert test.found and 1 not in [echo.bin for echo in test.echoes]
+
+
 def test_no_cycle_on_one_transmitter_even_with_a_rotor_on_the_cycles_harmonics(tmp_path):
     """The bundled captures (one transmitter) show no cycle. Nor does a hovering rotor whose chopping lines fall on
     every multiple of PRF / 12 (2 blades at 50 rev/s, PRF 2.4 kHz: lines at 100 Hz steps, PRF / 12 = 200 Hz) about

@@ -38,21 +38,25 @@ class Impulse:
 
 
 def impulse(signal, noise_power):
-    """The :class:`Impulse` reading of ``signal`` (its mean removed; ``noise_power`` per sample): its
+    """The :class:`Impulse` reading of ``signal`` (the mean of the samples outside the impulse removed; ``noise_power``
+    per sample): its
     ``IMPULSE_SAMPLES`` strongest samples, each with ``IMPULSE_SPREAD`` samples either side (a click rings through
     the receiver's filter: a third sample at 6 % of the peak had let one read as a drone), against the others.
 
     Noise's strongest two of n exponential powers average ``2 H_n - 1`` times its mean (H_n the harmonic number);
     the samples beside them, and the others, its mean (a little over and under it: the test errs towards a target)."""
-    power = np.abs(np.asarray(signal) - np.mean(signal)) ** 2
-    n = len(power)
+    signal = np.asarray(signal)
+    n = len(signal)
     if n <= 2 * IMPULSE_SAMPLES * (2 * IMPULSE_SPREAD + 1) or noise_power <= 0:
         return Impulse(0.0, 0.0)
     sigma = math.sqrt(n) * noise_power
+    power = np.abs(signal - np.mean(signal)) ** 2
     region = np.zeros(n, dtype=bool)
     for _ in range(IMPULSE_SAMPLES):
         peak = int(np.argmax(np.where(region, -np.inf, power)))
         region[max(peak - IMPULSE_SPREAD, 0):peak + IMPULSE_SPREAD + 1] = True
+    # the mean of the others, not of all: a click of power P in the mean would lift each other sample by P / n^2
+    power = np.abs(signal - np.mean(signal[~region])) ** 2
     harmonic = math.log(n) + EULER_GAMMA + 1.0 / (2 * n)
     peaks_noise = IMPULSE_SAMPLES * harmonic - IMPULSE_SAMPLES * (IMPULSE_SAMPLES - 1) / 2
     inside = float(power[region].sum()) - (peaks_noise + np.count_nonzero(region) - IMPULSE_SAMPLES) * noise_power

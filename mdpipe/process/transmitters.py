@@ -29,7 +29,9 @@ had halved the chirp rate and lost the drone).
 
 Not found, and to be given (``--transmitters``, or ``TxSeq`` in the file): a cycle on a capture with one static echo
 or none (clutter, leakage between the antennas in the range bins read), and cycles of 3 or 4 (a rotor held still
-whose lines fall on every k PRF / 3 or k PRF / 4 makes the same steady change).
+whose lines fall on every k PRF / 3 or k PRF / 4 makes the same steady change). An echo whose two transmitters'
+chirps nearly cancel (their phases 180 deg apart at its angle) has little harmonic 0 and is no static echo here. The
+mean chirp's offset over fast time (the ADC's, whose main lobe reaches range bin 1) is taken out of every block.
 """
 
 import math
@@ -81,7 +83,9 @@ class PhaseSums:
         if count == 0:
             return
         blocks = samples[start:stop].reshape(count, BLOCK_CHIRPS // PHASES, PHASES, -1)
-        echoes = np.fft.rfft(blocks.mean(axis=1, dtype=np.float64) * self.window, axis=2)  # (count, PHASES, B)
+        means = blocks.mean(axis=1, dtype=np.float64)
+        means -= means.mean(axis=2, keepdims=True)  # the ADC's offset, whose main lobe would reach range bin 1
+        echoes = np.fft.rfft(means * self.window, axis=2)  # (count, PHASES, B)
         harmonics = np.fft.fft(echoes, axis=1) / PHASES
         self.sums += harmonics.sum(axis=0)
         self.powers += (harmonics.real ** 2 + harmonics.imag ** 2).sum(axis=0)
