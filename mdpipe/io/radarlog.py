@@ -396,9 +396,10 @@ class RadarlogReader:
         try:
             params = self._stored_params.every(int(stride))
         except ParameterError:
+            longest_s = RADAR_LIMITS["chirp_period_s"][1]
             raise ParameterError(f"{self.path}: one transmitter's chirps, one in {stride} (its cycle), lie "
-                                 f"{stride * self._stored_params.chirp_period_s:.3g} s apart, over the "
-                                 f"{RADAR_LIMITS['chirp_period_s'][1]:g} s read; check --transmitters and TxSeq") from None
+                                 f"{stride * self._stored_params.chirp_period_s:.3g} s apart, over the {longest_s:g} s "
+                                 "read; check --transmitters and TxSeq") from None
         self.stride, self.params = int(stride), params
         self.n_chirps = len(range(0, self._stored_chirps, self.stride))
 

@@ -1014,8 +1014,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         return Rotation(Measured(chopping_value, "blade_conflict", note), withheld("blade_conflict", note),
                         n_blades=blades, n_blades_source=source)
     if chopping_value * dwell_s < 2 * PHASED_ROTORS:
-        note = (f"rotation not estimable: a chopping frequency of {chopping_value:.4g} Hz read on {dwell_s:.3g} s could be "
-                f"the flashes of up to {PHASED_ROTORS} rotors turning at one rate, their phases apart, within a "
+        note = (f"rotation not estimable: a chopping frequency of {chopping_value:.4g} Hz read on {dwell_s:.3g} s could "
+                f"be the flashes of up to {PHASED_ROTORS} rotors turning at one rate, their phases apart, within a "
                 f"chopping period up to {PHASED_ROTORS} times longer, which the dwell does not hold twice")
         return Rotation.withheld("dwell_short", note)
     chopping = Measured(chopping_value)

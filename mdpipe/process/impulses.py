@@ -8,7 +8,8 @@ period, wings beating. Its strongest samples may hold most of its power (a 94 GH
 peaks by a CW receiver sampling at 11.8 kHz: two samples held 62 %), but its other samples stand over the noise too.
 An echo whose ``IMPULSE_SAMPLES`` strongest samples (with ``IMPULSE_SPREAD`` samples either side of each: a click
 rings) stand ``MIN_EXCESS_SIGMAS`` standard deviations of the noise's summed power over what noise puts there, while
-its other samples do not stand that far over the noise, is read as an impulse: class ``none``, every feature but its SNR withheld as ``impulse``.
+its other samples do not stand that far over the noise, is read as an impulse: class ``none``, every feature but its
+SNR withheld as ``impulse``.
 """
 
 import math
@@ -21,7 +22,6 @@ from mdpipe.process.features import read_as, withheld_row
 IMPULSE_SAMPLES = 2
 IMPULSE_SPREAD = 4        # samples either side of each that ring with it
 MIN_EXCESS_SIGMAS = 10.0  # power over the noise, in standard deviations of n noise samples' summed power
-EULER_GAMMA = 0.5772156649015329
 
 
 @dataclass(frozen=True)
@@ -57,7 +57,7 @@ def impulse(signal, noise_power):
         region[max(peak - IMPULSE_SPREAD, 0):peak + IMPULSE_SPREAD + 1] = True
     # the mean of the others, not of all: a click of power P in the mean would lift each other sample by P / n^2
     power = np.abs(signal - np.mean(signal[~region])) ** 2
-    harmonic = math.log(n) + EULER_GAMMA + 1.0 / (2 * n)
+    harmonic = math.log(n) + np.euler_gamma + 1.0 / (2 * n)
     peaks_noise = IMPULSE_SAMPLES * harmonic - IMPULSE_SAMPLES * (IMPULSE_SAMPLES - 1) / 2
     inside = float(power[region].sum()) - (peaks_noise + np.count_nonzero(region) - IMPULSE_SAMPLES) * noise_power
     others = float(power[~region].sum()) - np.count_nonzero(~region) * noise_power

@@ -23,9 +23,9 @@ echo; a hovering rotor whose chopping line falls on PRF / 2 and on no other k PR
 odd count 1, 5, 7, 11 ...) changes its own. So the cycle is found where ``MIN_ECHOES`` static echoes show it, and the
 first transmitter's chirps are then read (:meth:`mdpipe.io.radarlog.RadarlogReader.select_every`): Tp times the
 cycle, a Doppler span as many times narrower, the others' chirps unused. Where one echo alone shows it, the chirps are
-read as they are and a note says to give ``--transmitters 2`` if the radar sends them so (a hovering X-band rotor at
-120 rev/s sampled at 2.4 kHz, or the FIMI quadrotor at 156.25 rev/s at the Radarlog's 15.625 kHz, its line on PRF / 2,
-had halved the chirp rate and lost the drone).
+read as they are and a note says to give ``--transmitters 2`` if the radar sends them so (in a first form, found on one
+echo, a hovering X-band rotor at 120 rev/s sampled at 2.4 kHz, or the FIMI quadrotor at 156.25 rev/s at the
+Radarlog's 15.625 kHz, its line on PRF / 2, had halved the chirp rate and lost the drone).
 
 Not found, and to be given (``--transmitters``, or ``TxSeq`` in the file): a cycle on a capture with one static echo
 or none (clutter, leakage between the antennas in the range bins read), and cycles of 3 or 4 (a rotor held still
@@ -193,11 +193,12 @@ class TransmitCycle:
             if not shown:
                 return None
             echo = shown[0]
+            others = ("no other static echo does" if len(self.test.echoes) > 1
+                      else "the capture holds no other static echo to tell")
             return (f"the static echo at {echo.bin * params.range_bin_m:.3g} m changes from chirp to chirp, at half "
                     f"the chirp rate, by {10 * math.log10(max(echo.share, 1e-30)):.1f} dB of its power, as the chirps "
-                    "of two transmitters in turn would make it, but no other static echo does (a line of a target's "
-                    "own on PRF / 2 would do so too): if two transmitters send the chirps in turn, give "
-                    "--transmitters 2")
+                    f"of two transmitters in turn would make it, but {others} (a line of a target's own on PRF / 2 "
+                    "would do so too): if two transmitters send the chirps in turn, give --transmitters 2")
         how = {"given": "--transmitters", "file": "the file's TxSeq",
                "found": (f"found: {len(self.test.showing)} static echoes change from chirp to chirp by "
                          f"{10 * math.log10(max(self.test.share, 1e-30)):.1f} dB of their power or more"
