@@ -217,7 +217,7 @@ def test_flashes_caught_in_a_few_samples_are_no_impulse():
 def test_a_chopping_frequency_the_dwell_holds_under_eight_times_is_withheld(tmp_path):
     """The Phantom 4 of paper config 7 (four 2-blade rotors at 70 rev/s, phases 0/37/71/113 deg) seen 8 ms: its four
     rotors flash about 1.46 ms apart within each 7.1 ms chopping period, a comb at 683 Hz read `ok` before; now
-    `dwell_short`. Seen 0.12 s (17 chopping periods), 140 Hz."""
+    `ambiguous_period` (a drone still). Seen 0.12 s (17 chopping periods), 140 Hz."""
     scene = load_scene_mapping(ROOT / "configs" / "paper" / "table1_config7.yaml")
     for chirps, expected in ((200, None), (3000, 140.0)):
         scene["radar"]["n_chirps"] = chirps
@@ -225,7 +225,7 @@ def test_a_chopping_frequency_the_dwell_holds_under_eight_times_is_withheld(tmp_
         row = process_capture(path, ProcessParams()).rows[0]
         assert row["class"] == "drone"
         if expected is None:
-            assert row["chopping_freq_hz"] is None and row["chopping_freq_hz_status"] == "dwell_short"
+            assert row["chopping_freq_hz"] is None and row["chopping_freq_hz_status"] == "ambiguous_period"
         else:
             assert row["chopping_freq_hz"] == pytest.approx(expected, rel=0.005)
 

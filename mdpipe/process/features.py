@@ -802,7 +802,8 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
     within an unaliased band,
     one of single lines each under the band's threshold is searched over the span (:func:`_comb_beyond_band`); the
     flashes' Doppler sides (blade parity, a power in time, not a line pattern) are then read out to its extent.
-    A chopping frequency the dwell holds fewer than ``2 PHASED_ROTORS`` periods of is withheld as ``dwell_short``: a
+    A chopping frequency the dwell holds fewer than ``2 PHASED_ROTORS`` periods of is withheld as ``ambiguous_period``
+    (blade flashes found, their period untold: a drone still): a
     quadrotor's four rotors at one rate, phases apart, flash four times per chopping period, and a dwell that does not
     hold that period twice cannot tell (the Phantom 4 of paper config 7 seen 8 ms: its rotors' flashes 1.46 ms apart
     read as a comb at 683 Hz for 140, `ok`).
@@ -1017,7 +1018,7 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         note = (f"rotation not estimable: a chopping frequency of {chopping_value:.4g} Hz read on {dwell_s:.3g} s could "
                 f"be the flashes of up to {PHASED_ROTORS} rotors turning at one rate, their phases apart, within a "
                 f"chopping period up to {PHASED_ROTORS} times longer, which the dwell does not hold twice")
-        return Rotation.withheld("dwell_short", note)
+        return Rotation.withheld("ambiguous_period", note)
     chopping = Measured(chopping_value)
     if source == "assumed" and flashes_only and not alternating:
         chopping = Measured(chopping_value, "assumed_blades", f"chopping frequency assumes an even blade count (an "
