@@ -126,21 +126,30 @@ def _fitted(lines):
     return float(np.sum(k * f) / np.sum(k * k))
 
 
+def _reach(resolution_hz, k, f0_hz, drift=DRIFT):
+    """How far from ``k f0_hz`` a line of order ``k`` may lie: half a resolution bin and the grid's ``drift``."""
+    return resolution_hz / 2 + abs(k) * drift * f0_hz
+
+
 def _lines_at(spectrum, f0_hz, orders, *, drift=DRIFT, sharp=True):
-    """(order, Hz, power) of the lines standing at ``+-orders`` (may be fractional) times ``f0_hz``, each within half
-    a resolution bin and the grid's ``drift`` of it (and ``sharp``)."""
+    """(order, Hz, power) of the lines standing at ``+-orders`` (may be fractional) times ``f0_hz``, each within
+    :func:`_reach` of it (and ``sharp``)."""
+    return _lines_within(spectrum, f0_hz, np.concatenate([orders, -orders]),
+                         lambda k: _reach(spectrum.resolution_hz, k, f0_hz, drift), sharp=sharp)
+
+
+def _lines_within(spectrum, f0_hz, signed_orders, reach, *, sharp=True):
+    """(order, Hz, power) of the lines standing within ``reach(k)`` of ``k f0_hz``, for each of ``signed_orders``."""
     found = []
-    for k in np.concatenate([orders, -orders]):
-        reach = spectrum.resolution_hz / 2 + abs(k) * drift * f0_hz
-        line = spectrum.line(k * f0_hz - reach, k * f0_hz + reach, k * f0_hz, sharp=sharp)
+    for k in signed_orders:
+        line = spectrum.line(k * f0_hz - reach(k), k * f0_hz + reach(k), k * f0_hz, sharp=sharp)
         if line is not None:
             found.append((float(k), *line))
     return found
 
 
 def _consistent(lines, f0_hz, resolution_hz):
-    return [line for line in lines
-            if abs(line[1] - line[0] * f0_hz) <= resolution_hz / 2 + abs(line[0]) * DRIFT * f0_hz]
+    return [line for line in lines if abs(line[1] - line[0] * f0_hz) <= _reach(resolution_hz, line[0], f0_hz)]
 
 
 def _top_order(prf_hz, f0_hz):
@@ -175,12 +184,8 @@ def find_hum(signal, *, prf_hz, mains_hz):
         if top < MIN_LINES or n / prf_hz < MIN_CYCLES / nominal_hz:
             continue
         spectrum = spectrum or _Spectrum(signal, prf_hz)
-        first = []
-        for k in [s * k for k in range(1, FIRST_ORDERS + 1) for s in (1, -1)]:
-            reach = abs(k) * nominal_hz * GRID_TOLERANCE
-            line = spectrum.line(k * nominal_hz - reach, k * nominal_hz + reach, k * nominal_hz)
-            if line is not None:
-                first.append((k, *line))
+        first = _lines_within(spectrum, nominal_hz, [s * k for k in range(1, FIRST_ORDERS + 1) for s in (1, -1)],
+                              lambda k: abs(k) * nominal_hz * GRID_TOLERANCE)
         first = _consistent(first, _fitted(first), spectrum.resolution_hz) if len(first) >= 2 else []
         if len(first) < 2:
             continue
@@ -192,7 +197,7 @@ def find_hum(signal, *, prf_hz, mains_hz):
         chance = max(len(_lines_at(spectrum, f0, np.arange(top) + offset)) for offset in CHANCE_OFFSETS)
         finer = any(all(len(_lines_at(spectrum, f0, np.arange(top) + j / m)) >= FINER_SHARE * len(lines)
                         for j in range(1, m)) for m in range(2, 8))
-        off = np.median([abs(f - k * f0) / (spectrum.resolution_hz / 2 + abs(k) * DRIFT * f0) for k, f, _ in lines])
+        off = np.median([abs(f - k * f0) / _reach(spectrum.resolution_hz, k, f0) for k, f, _ in lines])
         if (abs(f0 / nominal_hz - 1) > GRID_TOLERANCE or np.gcd.reduce([int(round(abs(line[0]))) for line in lines])
                 > MAX_LINE_STEP or len(lines) < MIN_LINES + chance + CHANCE_SIGMAS * np.sqrt(chance)
                 or off > MAX_OFF or finer or _goes_on(spectrum, f0, lines, top)):
