@@ -64,6 +64,12 @@ def blackman_harris(n):
     return sum((-1) ** k * a * np.cos(k * phase) for k, a in enumerate(BLACKMAN_HARRIS))
 
 
+def blackman_harris_cells(signal):
+    """The dwell's Blackman-Harris periodogram (FFT order, V^2 per sample: over the window's summed squares)."""
+    window = blackman_harris(len(signal))
+    return np.abs(np.fft.fft(signal * window)) ** 2 / np.sum(window ** 2)
+
+
 def _exponential_mean(cells, axis):
     """The mean of exponential ``cells`` read from their lower ``NOISE_QUANTILE`` along ``axis``."""
     return np.quantile(cells, NOISE_QUANTILE, axis=axis) / -math.log1p(-NOISE_QUANTILE)
@@ -135,8 +141,7 @@ def noise_profile(signal):
     spread for white noise (a receiver filter narrower than the sampling, a 1/f rise near 0 Hz, clutter spread about
     0 m/s)."""
     n = len(signal)
-    window = blackman_harris(n)
-    cells = np.abs(np.fft.fft(signal * window)) ** 2 / np.sum(window ** 2)
+    cells = blackman_harris_cells(signal)
     n_bands = int(np.clip(n // PROFILE_CELLS, PROFILE_SMOOTH, PROFILE_BANDS))
     n_bands = 2 ** int(math.log2(n_bands))  # frames of n_bands samples: one cell a band, the bands' own
     bands = np.array_split(cells, n_bands)
@@ -172,8 +177,7 @@ def whitened(signal, profile):
 def noise_power(signal, *, frame):
     """The receiver noise of complex ``signal`` (its mean removed, its noise white: :func:`whitened`), read from the
     signal: a :class:`NoiseEstimate`."""
-    window = blackman_harris(len(signal))
-    cells = np.abs(np.fft.fft(signal * window)) ** 2 / np.sum(window ** 2)
+    cells = blackman_harris_cells(signal)
     dwell, dwell_error = _median_and_error([_exponential_mean(part, axis=0)
                                             for part in np.array_split(cells, NOISE_BANDS)])
     n_frames = len(signal) // frame
