@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades offmodel-cw offmodel-cw-hum readme clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-lowprf evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades offmodel-cw offmodel-cw-hum readme clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -86,6 +86,12 @@ evaluate-fresh: $(MDPIPE)
 # The held-out drone sweep (another seed): what the estimators give on draws they were not tuned on
 evaluate-heldout: $(MDPIPE)
 	$(MDPIPE) evaluate configs/sweeps/heldout_drones.yaml --out out/evaluate_heldout -j 2
+
+# The low-PRF sweep: the drone families at PRFs of 1.5-6 kHz, their tips folded many times, at its seed and at one
+# nothing was tuned on (~2 min each)
+evaluate-heldout-lowprf: $(MDPIPE)
+	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --out out/evaluate_heldout_lowprf -j 2
+	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --seed 556 --out out/evaluate_heldout_lowprf_556 -j 2
 
 # The held-out bird sweep: the default sweep's birds at a counter-drone radar's PRF and dwell (~2 min)
 evaluate-heldout-birds: $(MDPIPE)

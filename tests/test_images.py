@@ -1,9 +1,10 @@
 """Range-Doppler images: a drone's blade flashes detected off its range are no second target."""
 
+import numpy as np
 import pytest
 
 from mdpipe.params import RadarParams
-from mdpipe.process.images import image_owners, image_reach_m
+from mdpipe.process.images import flash_image_owners, flashes_coincide, image_owners, image_reach_m
 
 
 def test_the_reach_of_a_tip_at_the_speed_of_sound_is_its_doppler_times_the_sampled_ramp_in_bins():
@@ -41,3 +42,110 @@ def test_an_image_owns_no_image_of_its_own():
     within reach of the second only, stays a target."""
     rows = [row(10.0, 150.0), row(13.0, 150.5), row(16.0, 150.2)]
     assert image_owners(rows, reach_m=4.0) == [None, 0, None]
+
+
+def flashing(rng, n=2048, share=0.1):
+    """A power per chirp: flashes (a tenth of the chirps, 30 times the floor) over an exponential floor."""
+    return rng.exponential(1.0, n) + 30.0 * (rng.random(n) < share)
+
+
+def target(range_m, cls="drone", body=None, chopping_hz=None):
+    return {"range_m": range_m, "class": cls, "body_velocity_mps": body, "chopping_freq_hz": chopping_hz}
+
+
+def two_images(rng, n=2048):
+    """Two powers carrying the same flashes chirp for chirp, each over its own floor."""
+    flashes = 30.0 * (rng.random(n) < 0.1)
+    return [flashes + rng.exponential(1.0, n), flashes + rng.exponential(1.0, n)]
+
+
+@pytest.mark.parametrize("drone_first", [True, False])
+def test_two_images_flashing_together_either_side_of_a_drone_are_its_own(drone_first):
+    """A hovering drone at 10.8 m (its body line found) and two detections at 7.2 and 15.6 m whose powers carry the
+    same flashes chirp for chirp: the approaching and the receding blades' images, the drone 0.6 m from their
+    midpoint (0.14 of their half-span). The drone owns them whether it is stronger or weaker than they are."""
+    rng = np.random.default_rng(1)
+    drone, images = (target(10.79, body=-0.08), rng.exponential(50.0, 2048)), two_images(rng)
+    rows = [target(7.20, "bird"), target(15.59, "bird")]
+    powers = list(images)
+    if drone_first:
+        rows, powers = [drone[0]] + rows, [drone[1]] + powers
+        assert flash_image_owners(rows, powers, [None] * 3, reach_m=23.0) == [None, 0, 0]
+    else:
+        rows, powers = rows + [drone[0]], powers + [drone[1]]
+        assert flash_image_owners(rows, powers, [None] * 3, reach_m=23.0) == [2, 2, None]
+
+
+@pytest.mark.parametrize("between", [target(10.79, body=None), target(10.79, "none", body=-0.08),
+                                     target(13.0, body=-0.08)])
+def test_images_flashing_together_with_no_drone_between_them_are_the_strongests(between):
+    """No body line found between them, none read a drone (the images may be all that shows it), or off their
+    midpoint by more than a quarter of their half-span: the stronger image owns the weaker, and the pipeline analyses
+    the drone at their hub."""
+    rng = np.random.default_rng(2)
+    powers = [rng.exponential(50.0, 2048)] + two_images(rng)
+    rows = [between, target(7.20), target(15.59)]
+    assert flash_image_owners(rows, powers, [None] * 3, reach_m=23.0) == [None, None, 1]
+
+
+@pytest.mark.parametrize("case", ["independent", "beyond_reach", "other_length", "not_finite"])
+def test_targets_whose_flashes_do_not_coincide_or_lie_beyond_reach_stay_targets(case):
+    """Independent echoes correlate near 0; coinciding flashes beyond a tip's reach are another drone's; powers of
+    other lengths, or not finite, are compared with none."""
+    rng = np.random.default_rng(3)
+    rows = [target(10.8, body=0.1), target(7.2), target(40.0 if case == "beyond_reach" else 15.6)]
+    powers = [flashing(rng)] + ([flashing(rng), flashing(rng)] if case == "independent" else two_images(rng))
+    if case == "other_length":
+        powers[2] = powers[2][:-1]
+    if case == "not_finite":
+        powers[2][5] = np.nan
+    assert flash_image_owners(rows, powers, [None] * 3, reach_m=23.0) == [None, None, None]
+
+
+def test_a_target_owning_a_comb_image_is_no_flash_image():
+    """Row 1 owns row 2 by their combs; rows 0 and 1 flash together, but row 1 stays (its comb image's note lives on
+    its row), and a comb image is grouped with nothing."""
+    rng = np.random.default_rng(4)
+    images = two_images(rng)
+    powers = [images[0], images[1], images[1] + rng.exponential(1.0, 2048)]
+    rows = [target(10.8), target(12.0, chopping_hz=150.0), target(13.0, chopping_hz=150.5)]
+    assert flash_image_owners(rows, powers, [None, None, 1], reach_m=10.0) == [None, None, 1]
+
+
+def test_every_member_of_a_group_flashes_with_every_other():
+    """Three detections: the first and third flash with the second but not with each other (a chain): the second
+    joins the first, the third stays a target."""
+    rng = np.random.default_rng(6)
+    a, b = (30.0 * (rng.random(4096) < 0.1) for _ in range(2))
+    powers = [a + rng.exponential(1.0, 4096), a + b + rng.exponential(1.0, 4096), b + rng.exponential(1.0, 4096)]
+    assert flashes_coincide(powers[0], powers[1]) and flashes_coincide(powers[1], powers[2])
+    assert not flashes_coincide(powers[0], powers[2])
+    rows = [target(10.0), target(12.0), target(14.0)]
+    assert flash_image_owners(rows, powers, [None] * 3, reach_m=10.0) == [None, 0, None]
+
+
+@pytest.mark.parametrize("scale, coincide", [(1.0, True), (0.0, False)])
+def test_flashes_coincide_chirp_for_chirp(scale, coincide):
+    rng = np.random.default_rng(5)
+    flashes = 30.0 * (rng.random(4096) < 0.05)
+    a = flashes + rng.exponential(1.0, 4096)
+    b = scale * flashes + rng.exponential(1.0, 4096)
+    assert flashes_coincide(a, b) is coincide
+    assert not flashes_coincide(a, np.ones(4096))  # a power without flashes (no spread) coincides with none
+
+
+@pytest.mark.parametrize("crossed, kept", [(False, 1), (True, 3)])
+def test_no_images_are_told_by_flashes_where_bursts_cross_every_bin(crossed, kept):
+    """Another radar's chirps crossing ours light every range bin at once: all targets then flash together, and none
+    is taken for another's image by its flashes (the pipeline's ``without_images``, given ``crossed``)."""
+    from mdpipe.process.pipeline import without_images
+    params = RadarParams(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=180.1e-6, chirp_period_s=225.1e-6,
+                         sample_rate_hz=355366.0, n_samples=64, n_channels=1)
+    rng = np.random.default_rng(7)
+    powers = [rng.exponential(50.0, 2048)] + two_images(rng)
+    rows = [dict(target(r, c, body=v), notes="", target=i)
+            for i, (r, c, v) in enumerate([(10.79, "drone", -0.08), (7.20, "bird", None), (15.59, "bird", None)])]
+    targets = [(None, np.sqrt(p).astype(complex), 0.0, None) for p in powers]
+    detections, _, rows, _ = without_images([0, 1, 2], targets, rows, [0, 1, 2], params, crossed=crossed)
+    assert detections == [0, 1, 2][:kept] and len(rows) == kept
+    assert rows[0]["notes"].count("coinciding chirp for chirp") == 3 - kept

@@ -1877,3 +1877,119 @@ def test_flash_times_stand_against_a_comb_at_three_times_them_only_where_the_ram
     train = _ramp_train_of(flash_chirps, ramp_share=ramp_share)
     assert _no_passages_hidden(lambda: train, 15000.0 / 32.0, k, prf_hz=15000.0) is stand
     assert _no_passages_hidden(None, 15000.0 / 32.0, k, prf_hz=15000.0) is False  # the ramp not read in parts
+
+
+def test_an_odd_counts_flash_times_at_two_thirds_of_a_folded_comb_give_no_rate(tmp_path):
+    """Scene 282 of a low-PRF draw of the drone families (X band, PRF 3.3 kHz, seen 0.93 s): four 3-blade rotors at
+    51.7-54.1 rev/s, one blade 1.65 times the others, N = 3 given, their tips folded. The comb stood at 157 Hz (159
+    true) and the flash times at 107.7 Hz, two thirds of it: the flashes of an odd N, twice per chopping period,
+    caught at one passage in three. Read from the flash times (halved for the odd N) the rate was 17.9 rev/s, `ok`.
+    A chopping half the flash times on a comb three times it explains the pair as well: no rate."""
+    radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=0.000243279, chirp_period_s=0.000304098,
+                 sample_rate_hz=526144.8794511651, n_samples=128, n_chirps=3046, n_channels=1)
+    quad = {"name": "three_blade_quad", "type": "multirotor", "elevation_deg": 9.40161, "body_rcs_m2": 0.0154074,
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [49.5234, 288.794, 272.531, 82.9462], "blade_rcs_m2": 0.001737,
+                       "rate_wander_fraction": 0.0108816, "rate_wander_period_s": 0.636615,
+                       "tilt_deg": [2.70294, -1.36966, -4.50072, 1.31361], "blades": 3, "arm_m": 0.40401,
+                       "blade_length_m": 0.109382, "rev_per_s": [52.9431, -54.1404, 51.7295, -53.2042],
+                       "blade_gains": [1.0, 1.0, 1.65173]},
+            "motion": {"position_m": [49.0894, 17.0009, 7.79787], "velocity_mps": [0.255738, 0.687809, 0.0]}}
+    clutter = [{"type": "static", "name": f"clutter{i}", "range_m": r, "azimuth_deg": a, "rcs_m2": rcs}
+               for i, (r, a, rcs) in enumerate([(43.4362, -24.4709, 2.55874), (57.7265, -37.3583, 3.56968),
+                                                (7.44374, 36.36, 0.692915)])]
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=-0.00144554, seed=1122061451, clutter=clutter, n_blades=3)
+    assert row["class"] == "drone" and row["aliased"]
+    assert row["rotation_rate_hz"] is None and row["chopping_freq_hz"] is None
+    assert row["rotation_rate_hz_status"] == row["chopping_freq_hz_status"] == "ambiguous_period"
+    assert "2/3 of it" in row["notes"]
+
+
+@pytest.mark.parametrize("ratio, odd, held", [
+    (2 / 3, True, True), (2 / 5, True, True), (0.685, True, True),  # 2.7 % off 2/3: rotors apart
+    (2 / 3, False, False),  # equal blades of an even N flash once per chopping period: 2/m is never their sampling
+    (2 / 3 * 1.06, True, False), (0.5, True, False), (1.5, True, False), (2 / 7, True, False)])
+def test_flash_times_two_mths_of_a_folded_comb_are_ambiguous_for_an_odd_count(ratio, odd, held):
+    """Flash times 2/m of a folded comb (m = 3, 5; within 5 %) leave an odd count's chopping at the comb or at half
+    the flash times: withheld. A whole fraction (1/2) and ratios over 1 are read elsewhere. The parity (which may
+    read the range sides) is asked only for such a ratio."""
+    from mdpipe.process.features import _odd_flashes_sampled
+    asked = []
+    result = _odd_flashes_sampled(ratio, odd=lambda: asked.append(1) or odd, comb_hz=150.0, timed_hz=150.0 * ratio)
+    assert (result is not None) is held
+    assert bool(asked) is (held or not odd)
+    if held:
+        assert result.chopping.status == result.rate.status == "ambiguous_period" and result.rate.value is None
+
+
+def test_a_drones_two_range_doppler_images_at_a_low_prf_are_told_by_their_flashes(tmp_path):
+    """Scene 66 of the low-PRF sweep (`make evaluate-heldout-lowprf`): a quadrotor 11.0 m out at 94 GHz, PRF 4.4 kHz,
+    ramps of 180 us (a tip at 69 m/s lands 4.7 m off in range). Its tips folded ten times, the images either side
+    (7.2 and 15.6 m) showed no comb, and were read as two birds beating 5.3 Hz. Their flashes coincide chirp for chirp
+    and straddle the drone: one row, the drone's, its note naming them."""
+    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=0.000180096, chirp_period_s=0.00022512,
+                 sample_rate_hz=355366.0273631841, n_samples=64, n_chirps=2440, n_channels=4)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 5.4206, "body_rcs_m2": 0.00141556,
+            "body_scatterers": [{"offset_m": [0.05, 0.0, -0.06], "rcs_m2": 0.0163904}],
+            "motion": {"position_m": [3.26897, -1.11099, 10.5031], "velocity_mps": [0.00814209, 0.0285849, 0.0],
+                       "sway_amplitude_m": [0.145285, 0.136997, 0.0256658], "sway_period_s": 2.42447},
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [118.711, 127.377, 79.1507, 217.388], "blade_rcs_m2": 0.00762568,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 0.507334,
+                       "tilt_deg": [3.9165, 4.70183, 1.48222, -0.11893], "blades": 2, "arm_m": 0.203062,
+                       "blade_length_m": 0.110748, "rev_per_s": [101.802, -100.23, 98.8347, -100.006],
+                       "blade_gains": [1.0, 1.0]}}
+    path, _ = simulate(tmp_path, scene_mapping(radar, [quad], noise={"moving_snr_db": 19.3845}, seed=2054641444))
+    rows = process_capture(path, ProcessParams(elevation_deg=5.4206)).rows
+    assert len(rows) == 1
+    assert rows[0]["class"] == "drone" and rows[0]["range_m"] == pytest.approx(11.04, abs=0.75)
+    assert rows[0]["notes"].count("its blade flashes coinciding chirp for chirp with another detection's") == 2
+
+
+def test_a_comb_the_prf_folds_tips_onto_at_its_odd_orders_gives_no_rate_where_the_span_could_hide_them(tmp_path):
+    """Scene 86 of the low-PRF sweep drawn at seed 556 (nothing tuned on it): an X-band quadrotor of 2-blade rotors at
+    112.7-114.8 rev/s, 10.6 cm blades (tips at 76 m/s), seen at 14.6 deg at a PRF of 4.0 kHz: a span of +-30.5 m/s.
+    Its tips folded once, too faint to light the span's ends, and the PRF lay 0.1 bin from 35 times 114.6 Hz: the
+    folded chopping lines sat on the odd orders of a comb at half the chopping, read `ok` with N = 2 given (57.3
+    rev/s). Either chopping gives that comb: the comb's spacing kept as ambiguous, no rate."""
+    radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=0.000199429, chirp_period_s=0.000249286,
+                 sample_rate_hz=320916.2161170141, n_samples=64, n_chirps=2048, n_channels=4)
+    quad = {"name": "quadrotor_xband", "type": "multirotor", "elevation_deg": 14.5529, "body_rcs_m2": 0.00173206,
+            "motion": {"position_m": [15.5548, -7.30497, 3.74663], "velocity_mps": [-3.83549, 8.53595, 0.0],
+                       "sway_amplitude_m": [0.102256, 0.104538, 0.0910272], "sway_period_s": 3.3077},
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [256.646, 260.239, 187.899, 316.004], "blade_rcs_m2": 0.000838771,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 1.14444,
+                       "tilt_deg": [-2.77085, 2.21985, 0.184979, -1.12622], "blades": 2, "arm_m": 0.180886,
+                       "blade_length_m": 0.105608, "rev_per_s": [114.845, -112.738, 114.845, -114.67]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=-8.2453, seed=592113643, n_blades=2, elevation_deg=14.5529)
+    assert row["class"] == "drone" and not row["aliased"]
+    assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == "ambiguous_period"
+    assert row["chopping_freq_hz"] == pytest.approx(114.6, rel=0.01)  # half the truth, 228.5 Hz: not stood behind
+    assert row["chopping_freq_hz_status"] == "ambiguous_period"
+    assert row["n_blades"] == 2 and row["n_blades_source"] == "given"
+    assert "tips folded unseen would put a chopping of 229.2 Hz" in row["notes"]
+
+
+@pytest.mark.parametrize("aliased, prf_hz, wavelength_m, elevation_deg, held", [
+    (False, 4011.0, 0.0306, 14.6, True),    # PRF 35.0 times 114.6 Hz: the span of +-30.7 m/s may hide tips
+    (True, 4011.0, 0.0306, 14.6, False),    # read aliased: the folded-comb tests apply instead
+    (False, 4100.0, 0.0306, 14.6, False),   # 35.8 times: off the odd multiple by 45 bins
+    (False, 22805.4, 0.0306, 14.6, False),  # 199 times, but a span of +-174 m/s holds any rotor's tips
+    (False, 4011.0, 0.0306, 80.0, True),    # seen from 80 deg, its disc tilted 5 deg: 150 cos 75 = 39 m/s, over 30.7
+    (False, 4011.0, 0.0306, 88.0, False),   # ... from 88 deg: 150 cos 83 = 18 m/s, inside the span
+    (False, 4011.0, 0.0306, -80.0, True),   # from below as from above
+    (False, 4011.0, 0.0306, -88.0, False),
+    (False, 4011.0, 0.0306, 3.0, True),     # within the tilt of edge-on: the tips' full 150 m/s
+    (False, 4011.0, 0.0306, None, True)])   # elevation not given: taken edge-on
+def test_a_chopping_read_unaliased_on_an_odd_fold_is_withheld_only_where_the_span_could_hide_tips(
+        aliased, prf_hz, wavelength_m, elevation_deg, held):
+    from mdpipe.process.features import Measured, Rotation, _folded_unseen
+    turn = Rotation(Measured(114.6), Measured(57.3), (57.3,), 2, "given")
+    result = _folded_unseen(turn, aliased=aliased, prf_hz=prf_hz, wavelength_m=wavelength_m,
+                            elevation_deg=elevation_deg, dwell_s=0.51)
+    assert (result is turn) is not held
+    if held:  # the comb's spacing kept, not stood behind; the rate withheld; the blade count as given
+        assert result.chopping.value == 114.6 and result.chopping.status == "ambiguous_period"
+        assert result.rate.value is None and result.rate.status == "ambiguous_period"
+        assert (result.n_blades, result.n_blades_source) == (2, "given")

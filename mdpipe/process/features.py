@@ -68,6 +68,7 @@ POWER_COMB_TOLERANCE = 0.1   # an unaliased comb and its echo's power rate are a
                              # apart in rate (chopping at 123-134 Hz, the power repeated with the fastest, 133.1 Hz,
                              # the comb was their median, 125.2 Hz)
 MIN_ROTOR_TIP_MPS = 20.0     # multirotor blade tips move at 20-150 m/s (classify.py) ...
+MAX_ROTOR_TIP_MPS = 150.0    # ... (a span under the fastest may hold tips folded unseen)
 HIDDEN_ELEVATION_DEG = 60.0  # ... and, the elevation not given, are taken as seen within this of edge-on
 MIN_BLADE_M = 0.005          # a blade this short, at the elevation given (its disc tilted ROTOR_TILT_DEG towards
                              # face-on), reaches the least r cos(beta) of any rotor: a comb narrower is not one
@@ -445,6 +446,33 @@ def _undersampled(turn, why):
     return replace(turn, chopping=caveat(turn.chopping, "chopping frequency"), rate=caveat(turn.rate, "rotation rate"))
 
 
+def _folded_unseen(turn, *, aliased, prf_hz, wavelength_m, elevation_deg, dwell_s):
+    """``turn`` (a :class:`Rotation`), its chopping frequency kept as ``ambiguous_period`` (it or twice it; the blade
+    count as it was; the rate withheld) where it was read in a band
+    that shows no aliasing, whose span (``lambda PRF / 4``) yet holds no tips of the fastest rotor
+    (``MAX_ROTOR_TIP_MPS``, seen at the elevation given, its disc tilted ``ROTOR_TILT_DEG`` towards edge-on; else
+    edge-on), and whose PRF lies within the Hann main lobe of an odd multiple of it (:func:`_folds_onto_odd_orders`).
+    Tips folded once, too faint to light the span's ends, then put twice that chopping's lines on the odd orders of a
+    comb at it: the echo shows the same comb, and the same period, for either. Three X-band drones at PRFs of
+    2.2-4.4 kHz (spans of 17-34 m/s), N = 2 given or not, were read at half their chopping, `ok`, the PRF 0.11-0.28 bin
+    from 35, 45 and 45 times the comb (a fourth, 2.9 bins from 17 times it, is not told); three right readings lay
+    within the lobe too (0.9-1.7 bins: a 94 GHz hexarotor, an X-band quadrotor, a 77 GHz one seen from 81 deg)."""
+    chopping_hz = turn.chopping.value
+    if aliased or chopping_hz is None:
+        return turn
+    seen_deg = 0.0 if elevation_deg is None else max(0.0, abs(elevation_deg) - ROTOR_TILT_DEG)
+    fastest_mps = MAX_ROTOR_TIP_MPS * np.cos(np.deg2rad(min(seen_deg, 90.0)))
+    span_mps = wavelength_m * prf_hz / 4
+    if span_mps >= fastest_mps or not _folds_onto_odd_orders(chopping_hz, prf_hz=prf_hz, dwell_s=dwell_s):
+        return turn
+    note = (f"chopping frequency {chopping_hz:.4g} Hz or twice it, and rotation not estimable: the span reaches "
+            f"+-{span_mps:.3g} m/s, under the {fastest_mps:.3g} m/s a rotor's tips may, and the PRF lies within "
+            f"{HANN_LOBE_BINS:g} bins of an odd multiple of it: tips folded unseen would put a chopping of "
+            f"{2 * chopping_hz:.4g} Hz on the odd orders of its comb (another PRF tells which)")
+    return replace(turn, chopping=Measured(chopping_hz, "ambiguous_period", note),
+                   rate=withheld("ambiguous_period", note), rotor_rates_hz=())
+
+
 def _views_without_hum(flash_views, hum, *, prf_hz):
     """The target's :class:`~mdpipe.process.ranging.FlashViews` (``flash_views()``) with ``hum``'s lines taken out of
     each column, as out of the echo."""
@@ -741,6 +769,38 @@ def _whole_ratio(ratio):
     return 0
 
 
+ODD_FLASH_SAMPLING = (3, 5)  # an odd N's flash times caught at one passage in m, m these (2/m of its chopping) ...
+ODD_FLASH_TOLERANCE = 0.05   # ... within 5 %: rotors up to 5 % apart in rate blend the comb and the flash times
+                             # differently (157 Hz and 107.7 Hz, 2.7 % off two thirds)
+
+
+def _odd_flashes_sampled(ratio, *, odd, comb_hz, timed_hz):
+    """Rotation withheld as ``ambiguous_period`` where an aliased echo's flash times (``timed_hz``) are ``2 / m`` times
+    its folded comb (``comb_hz``, ``ratio`` the first over the second; m in ``ODD_FLASH_SAMPLING``, within
+    ``ODD_FLASH_TOLERANCE``) and the blade count is odd (``odd()``: given, measured, or the flashes alternating range
+    sides; asked only for such a ratio); else None.
+
+    An odd N flashes twice per chopping period, and flashes shorter than a chirp, caught at one passage in m only,
+    time at 2 / m of the chopping: the comb is the chopping. Or the flash times are whole, the chopping half their
+    rate, and the comb lies at m times it (folded lines coinciding). Both were seen on quadrotors of 3-blade rotors at
+    53 rev/s: at an X-band PRF of 3.3 kHz, their tips folded, combed at 157 Hz (159 true) and timed at 107.7 Hz (two
+    thirds), read 53.8 Hz from the flash times; at 77 GHz and 17.4 kHz timed at 319 Hz (twice the chopping, right)
+    and combed at 798 Hz (five times). The dwell does not tell which. Even counts are left to the flash times: equal
+    blades flash once per chopping period, caught at one passage in m at 1 / m of it, never 2 / m; a comb lining the
+    turn rate (one blade differing, half the chopping) would give 2 / 3 too, but six 2-blade rotors of the default
+    sweep timed at 93.7 Hz on a folded comb at 140.7 Hz were right from the flash times."""
+    if ratio >= 1:
+        return None
+    m = next((m for m in ODD_FLASH_SAMPLING if abs(ratio * m / 2 - 1) <= ODD_FLASH_TOLERANCE), None)
+    if m is None or not odd():
+        return None
+    note = (f"rotation not estimable: the line comb says {comb_hz:.4g} Hz and the flash times {timed_hz:.4g} Hz, 2/{m} "
+            f"of it: an odd blade count's flashes (twice per chopping period) caught at one passage in {m}, or a "
+            f"chopping of {timed_hz / 2:.4g} Hz whose folded lines coincide on a comb {m} times it; the dwell does "
+            "not tell which")
+    return Rotation.withheld("ambiguous_period", note)
+
+
 def _chopping_from_flash_rate(flash_rate_hz, *, n_blades, alternating):
     """The chopping frequency (one-element array) from an aliased echo's flash rate: 2N flashes a turn for an
     odd N (given, or, none given, flashes ``alternating`` range sides), N for an even one (or none given and
@@ -919,6 +979,10 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
             # comb at three times them, those the power resolved within the ramp repeats whole at, where the ramp's
             # test reads any passage seen between theirs; not for an odd N given, which halves flash times that an
             # odd N off the range bin's centre leaves at its chopping)
+            known = n_blades if n_blades is not None else measured_n
+            odd = (lambda: alternate(1.0 / timed_hz)) if known is None else (lambda: known % 2 == 1)
+            if held := _odd_flashes_sampled(ratio, odd=odd, comb_hz=centre, timed_hz=timed_hz):
+                return held
             held, chopping_hz, alternating = by_flash_times()
             if held:
                 return held
@@ -1784,6 +1848,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         turn = _undersampled(turn, hidden)
     if hum is not None:
         turn = _on_hum(turn, hum, body_hz=body_doppler_hz, prf_hz=prf_hz)
+    turn = _folded_unseen(turn, aliased=band.aliased, prf_hz=prf_hz, wavelength_m=wavelength_m,
+                          elevation_deg=params.elevation_deg, dwell_s=dwell_s)
     tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
                                       aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
                                       wavelength_m=wavelength_m,
