@@ -1971,23 +1971,24 @@ def test_a_comb_the_prf_folds_tips_onto_at_its_odd_orders_gives_no_rate_where_th
     assert "tips folded unseen would put a chopping of 229.2 Hz" in row["notes"]
 
 
-@pytest.mark.parametrize("aliased, prf_hz, wavelength_m, elevation_deg, held", [
-    (False, 4011.0, 0.0306, 14.6, True),    # PRF 35.0 times 114.6 Hz: the span of +-30.7 m/s may hide tips
-    (True, 4011.0, 0.0306, 14.6, False),    # read aliased: the folded-comb tests apply instead
-    (False, 4100.0, 0.0306, 14.6, False),   # 35.8 times: off the odd multiple by 45 bins
-    (False, 22805.4, 0.0306, 14.6, False),  # 199 times, but a span of +-174 m/s holds any rotor's tips
-    (False, 4011.0, 0.0306, 80.0, True),    # seen from 80 deg, its disc tilted 5 deg: 150 cos 75 = 39 m/s, over 30.7
-    (False, 4011.0, 0.0306, 88.0, False),   # ... from 88 deg: 150 cos 83 = 18 m/s, inside the span
-    (False, 4011.0, 0.0306, -80.0, True),   # from below as from above
-    (False, 4011.0, 0.0306, -88.0, False),
-    (False, 4011.0, 0.0306, 3.0, True),     # within the tilt of edge-on: the tips' full 150 m/s
-    (False, 4011.0, 0.0306, None, True)])   # elevation not given: taken edge-on
+@pytest.mark.parametrize("aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, held", [
+    (False, False, 4011.0, 0.0306, 14.6, True),    # PRF 35.0 times 114.6 Hz: a span of +-30.7 m/s may hide tips
+    (True, False, 4011.0, 0.0306, 14.6, False),    # read aliased: the folded-comb tests apply instead
+    (False, True, 4011.0, 0.0306, 14.6, False),    # flashes showed both tip edges inside the span: no fold
+    (False, False, 4100.0, 0.0306, 14.6, False),   # 35.8 times: off the odd multiple by 45 bins
+    (False, False, 22805.4, 0.0306, 14.6, False),  # 199 times, but a span of +-174 m/s holds any rotor's tips
+    (False, False, 4011.0, 0.0306, 80.0, True),    # seen from 80 deg, disc tilted 5 deg: 150 cos 75 = 39 m/s > 30.7
+    (False, False, 4011.0, 0.0306, 88.0, False),   # ... from 88 deg: 150 cos 83 = 18 m/s, inside the span
+    (False, False, 4011.0, 0.0306, -80.0, True),   # from below as from above
+    (False, False, 4011.0, 0.0306, -88.0, False),
+    (False, False, 4011.0, 0.0306, 3.0, True),     # within the tilt of edge-on: the tips' full 150 m/s
+    (False, False, 4011.0, 0.0306, None, True)])   # elevation not given: taken edge-on
 def test_a_chopping_read_unaliased_on_an_odd_fold_is_withheld_only_where_the_span_could_hide_tips(
-        aliased, prf_hz, wavelength_m, elevation_deg, held):
+        aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, held):
     from mdpipe.process.features import Measured, Rotation, _folded_unseen
     turn = Rotation(Measured(114.6), Measured(57.3), (57.3,), 2, "given")
-    result = _folded_unseen(turn, aliased=aliased, prf_hz=prf_hz, wavelength_m=wavelength_m,
-                            elevation_deg=elevation_deg, dwell_s=0.51)
+    result = _folded_unseen(turn, aliased=aliased, tips_seen=tips_seen, prf_hz=prf_hz,
+                            wavelength_m=wavelength_m, elevation_deg=elevation_deg, dwell_s=0.51)
     assert (result is turn) is not held
     if held:  # the comb's spacing kept, not stood behind; the rate withheld; the blade count as given
         assert result.chopping.value == 114.6 and result.chopping.status == "ambiguous_period"

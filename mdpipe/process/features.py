@@ -446,19 +446,23 @@ def _undersampled(turn, why):
     return replace(turn, chopping=caveat(turn.chopping, "chopping frequency"), rate=caveat(turn.rate, "rotation rate"))
 
 
-def _folded_unseen(turn, *, aliased, prf_hz, wavelength_m, elevation_deg, dwell_s):
+def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, dwell_s):
     """``turn`` (a :class:`Rotation`), its chopping frequency kept as ``ambiguous_period`` (it or twice it; the blade
     count as it was; the rate withheld) where it was read in a band
-    that shows no aliasing, whose span (``lambda PRF / 4``) yet holds no tips of the fastest rotor
+    that shows no aliasing, where no flash showed both the tips' Doppler edges inside the span (``tips_seen``: the
+    blade length's reading, :func:`blade_length`, got them), whose span (``lambda PRF / 4``) yet holds no tips of the
+    fastest rotor
     (``MAX_ROTOR_TIP_MPS``, seen at the elevation given, its disc tilted ``ROTOR_TILT_DEG`` towards edge-on; else
     edge-on), and whose PRF lies within the Hann main lobe of an odd multiple of it (:func:`_folds_onto_odd_orders`).
     Tips folded once, too faint to light the span's ends, then put twice that chopping's lines on the odd orders of a
     comb at it: the echo shows the same comb, and the same period, for either. Three X-band drones at PRFs of
     2.2-4.4 kHz (spans of 17-34 m/s), N = 2 given or not, were read at half their chopping, `ok`, the PRF 0.11-0.28 bin
     from 35, 45 and 45 times the comb (a fourth, 2.9 bins from 17 times it, is not told); three right readings lay
-    within the lobe too (0.9-1.7 bins: a 94 GHz hexarotor, an X-band quadrotor, a 77 GHz one seen from 81 deg)."""
+    within the lobe too (0.9-1.7 bins: a 94 GHz hexarotor, an X-band quadrotor, a 77 GHz one seen from 81 deg). Of
+    `make offmodel`'s scenes, three right readings at K and X band (PRFs of 9.4-20.9 kHz) lay within it with their flash
+    edges read inside the span, their blade lengths given: tips seen inside the span do not fold."""
     chopping_hz = turn.chopping.value
-    if aliased or chopping_hz is None:
+    if aliased or tips_seen or chopping_hz is None:
         return turn
     seen_deg = 0.0 if elevation_deg is None else max(0.0, abs(elevation_deg) - ROTOR_TILT_DEG)
     fastest_mps = MAX_ROTOR_TIP_MPS * np.cos(np.deg2rad(min(seen_deg, 90.0)))
@@ -1848,12 +1852,17 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         turn = _undersampled(turn, hidden)
     if hum is not None:
         turn = _on_hum(turn, hum, body_hz=body_doppler_hz, prf_hz=prf_hz)
-    turn = _folded_unseen(turn, aliased=band.aliased, prf_hz=prf_hz, wavelength_m=wavelength_m,
-                          elevation_deg=params.elevation_deg, dwell_s=dwell_s)
-    tip, length, edges = blade_length(body.demodulated, rate=turn.rate, chopping_hz=turn.chopping.value,
-                                      aliased=band.aliased, half_width_hz=band.half_width_hz, prf_hz=prf_hz,
-                                      wavelength_m=wavelength_m,
-                                      noise_power=noise_power, params=params, n_blades=turn.n_blades)
+    def lengths(read):  # the tip Doppler, blade length and flash edges of a rotation read
+        return blade_length(body.demodulated, rate=read.rate, chopping_hz=read.chopping.value, aliased=band.aliased,
+                            half_width_hz=band.half_width_hz, prf_hz=prf_hz, wavelength_m=wavelength_m,
+                            noise_power=noise_power, params=params, n_blades=read.n_blades)
+
+    tip, length, edges = lengths(turn)
+    folded = _folded_unseen(turn, aliased=band.aliased, tips_seen=edges is not None, prf_hz=prf_hz,
+                            wavelength_m=wavelength_m, elevation_deg=params.elevation_deg, dwell_s=dwell_s)
+    if folded is not turn:
+        turn = folded
+        tip, length, edges = lengths(turn)  # (no rate: none)
     wings_may_repeat = (turn.chopping.value is None and turn.chopping.status == "ambiguous_period"
                         and not band.aliased)  # (or wings' beat: see _wings_over_ambiguous_period)
     if turn.chopping.value is not None or (turn.chopping.status in ROTOR_EVIDENCE and not wings_may_repeat):
