@@ -448,12 +448,11 @@ def _undersampled(turn, why):
 
 def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, dwell_s):
     """``turn`` (a :class:`Rotation`), its chopping frequency kept as ``ambiguous_period`` (it or twice it; the blade
-    count as it was; the rate withheld) where it was read in a band
-    that shows no aliasing, where no flash showed both the tips' Doppler edges inside the span (``tips_seen``: the
-    blade length's reading, :func:`blade_length`, got them), whose span (``lambda PRF / 4``) yet holds no tips of the
-    fastest rotor
-    (``MAX_ROTOR_TIP_MPS``, seen at the elevation given, its disc tilted ``ROTOR_TILT_DEG`` towards edge-on; else
-    edge-on), and whose PRF lies within the Hann main lobe of an odd multiple of it (:func:`_folds_onto_odd_orders`).
+    count as it was; the rate withheld) where it was read in a band that shows no aliasing, no flash showed both the
+    tips' Doppler edges inside the span (``tips_seen``: the blade length's reading, :func:`blade_length`, got them),
+    the span (``lambda PRF / 4``) holds no tips of the fastest rotor (``MAX_ROTOR_TIP_MPS``, seen at the elevation
+    given, its disc tilted ``ROTOR_TILT_DEG`` towards edge-on; else edge-on), and the PRF lies within the Hann main
+    lobe of an odd multiple of it (:func:`_folds_onto_odd_orders`).
     Tips folded once, too faint to light the span's ends, then put twice that chopping's lines on the odd orders of a
     comb at it: the echo shows the same comb, and the same period, for either. Three X-band drones at PRFs of
     2.2-4.4 kHz (spans of 17-34 m/s), N = 2 given or not, were read at half their chopping, `ok`, the PRF 0.11-0.28 bin
