@@ -88,10 +88,10 @@ def test_images_flashing_together_with_no_drone_between_them_are_the_strongests(
     assert flash_image_owners(rows, powers, [None] * 3, reach_m=23.0) == [None, None, 1]
 
 
-@pytest.mark.parametrize("case", ["independent", "beyond_reach", "other_length", "not_finite"])
+@pytest.mark.parametrize("case", ["independent", "beyond_reach", "other_length", "not_finite", "mains_hum"])
 def test_targets_whose_flashes_do_not_coincide_or_lie_beyond_reach_stay_targets(case):
     """Independent echoes correlate near 0; coinciding flashes beyond a tip's reach are another drone's; powers of
-    other lengths, or not finite, are compared with none."""
+    other lengths, or not finite, are compared with none; an echo holding mains hum swings with the supply."""
     rng = np.random.default_rng(3)
     rows = [target(10.8, body=0.1), target(7.2), target(40.0 if case == "beyond_reach" else 15.6)]
     powers = [flashing(rng)] + ([flashing(rng), flashing(rng)] if case == "independent" else two_images(rng))
@@ -99,6 +99,8 @@ def test_targets_whose_flashes_do_not_coincide_or_lie_beyond_reach_stay_targets(
         powers[2] = powers[2][:-1]
     if case == "not_finite":
         powers[2][5] = np.nan
+    if case == "mains_hum":
+        rows[2]["mains_hum_hz"] = 50.0
     assert flash_image_owners(rows, powers, [None] * 3, reach_m=23.0) == [None, None, None]
 
 
@@ -134,10 +136,11 @@ def test_flashes_coincide_chirp_for_chirp(scale, coincide):
     assert not flashes_coincide(a, np.ones(4096))  # a power without flashes (no spread) coincides with none
 
 
-@pytest.mark.parametrize("crossed, kept", [(False, 1), (True, 3)])
-def test_no_images_are_told_by_flashes_where_bursts_cross_every_bin(crossed, kept):
-    """Another radar's chirps crossing ours light every range bin at once: all targets then flash together, and none
-    is taken for another's image by its flashes (the pipeline's ``without_images``, given ``crossed``)."""
+@pytest.mark.parametrize("crossed, clipped, kept", [(False, False, 1), (True, False, 3), (False, True, 3)])
+def test_no_images_are_told_by_flashes_where_bursts_cross_every_bin_or_samples_clip(crossed, clipped, kept):
+    """Another radar's chirps crossing ours light every range bin at once, and a clipped echo's images swing with its
+    power: all targets then flash together, and none is taken for another's image by its flashes (the pipeline's
+    ``without_images``, given ``crossed`` or ``clipped``)."""
     from mdpipe.process.pipeline import without_images
     params = RadarParams(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=180.1e-6, chirp_period_s=225.1e-6,
                          sample_rate_hz=355366.0, n_samples=64, n_channels=1)
@@ -146,6 +149,7 @@ def test_no_images_are_told_by_flashes_where_bursts_cross_every_bin(crossed, kep
     rows = [dict(target(r, c, body=v), notes="", target=i)
             for i, (r, c, v) in enumerate([(10.79, "drone", -0.08), (7.20, "bird", None), (15.59, "bird", None)])]
     targets = [(None, np.sqrt(p).astype(complex), 0.0, None) for p in powers]
-    detections, _, rows, _ = without_images([0, 1, 2], targets, rows, [0, 1, 2], params, crossed=crossed)
+    detections, _, rows, _ = without_images([0, 1, 2], targets, rows, [0, 1, 2], params, crossed=crossed,
+                                            clipped=clipped)
     assert detections == [0, 1, 2][:kept] and len(rows) == kept
     assert rows[0]["notes"].count("coinciding chirp for chirp") == 3 - kept

@@ -81,11 +81,13 @@ def flash_image_owners(rows, powers, owners, *, reach_m):
     analysed at their hub by :func:`mdpipe.process.pipeline.without_images`). A target read otherwise keeps none: the
     images may be all that shows the drone. Odd blade counts flash one side at a time: their images do not flash
     together and are not told so. Bursts of another radar crossing ours light every bin at once, and all targets
-    flash together: the caller does not ask then."""
+    flash together; a clipped echo's images (:mod:`mdpipe.process.saturation`) swing with its power: the caller does
+    not ask then (on `make bench-impairments`, a clipped capture's image was grouped so and left a drone). A target
+    whose echo holds mains hum (``mains_hum_hz``) swings with the supply, not with blades: it is no member."""
     owners = list(owners)
     owning = {owner for owner in owners if owner is not None}
     pool = [i for i, owner in enumerate(owners) if owner is None and i not in owning
-            and rows[i].get("range_m") is not None]
+            and rows[i].get("range_m") is not None and rows[i].get("mains_hum_hz") is None]
 
     def together(i, j):
         return abs(rows[i]["range_m"] - rows[j]["range_m"]) <= reach_m and flashes_coincide(powers[i], powers[j])

@@ -123,11 +123,12 @@ def hub_target(reader, stats, owner, image, process, analyse):
     return (detection, target, *analyse(detection, target, track_bins))
 
 
-def without_images(detections, targets, rows, analyses, params, hub=None, crossed=False):
+def without_images(detections, targets, rows, analyses, params, hub=None, crossed=False, clipped=False):
     """The four per-target lists less the targets that are a stronger drone's range-Doppler image
     (:func:`mdpipe.process.images.image_owners` by their combs, :func:`mdpipe.process.images.flash_image_owners` by
-    their flashes; not where bursts of another radar cross ours, ``crossed``: they light every bin at once), noted on
-    that drone's row; the rows renumbered.
+    their flashes; not where bursts of another radar cross ours, ``crossed``, nor where samples are ``clipped``: the
+    bursts light every bin at once, and a clipped echo's images carry its power's swings to other bins), noted on that
+    drone's row; the rows renumbered.
 
     A drone seen only as images (:func:`mdpipe.process.images.seen_from_a_side`) is analysed at its hub by
     ``hub(owner, image)`` (indices; None: not analysed again), and that row replaces the stronger image's where it
@@ -136,8 +137,8 @@ def without_images(detections, targets, rows, analyses, params, hub=None, crosse
     half its chopping frequency, its flashes taken for an odd count's two per period)."""
     reach_m = images.image_reach_m(params)
     by_combs = images.image_owners(rows, reach_m=reach_m)
-    owners = by_combs if crossed else images.flash_image_owners(rows, [np.abs(target[1]) ** 2 for target in targets],
-                                                                by_combs, reach_m=reach_m)
+    owners = by_combs if crossed or clipped else images.flash_image_owners(
+        rows, [np.abs(target[1]) ** 2 for target in targets], by_combs, reach_m=reach_m)
     rows, detections, targets, analyses = list(rows), list(detections), list(targets), list(analyses)
     moved = set()
     for image, owner in enumerate(owners):
@@ -271,7 +272,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         detections, targets, rows, analyses = without_images(
             detections, targets, rows, analyses, params,
             hub=lambda owner, image: hub_target(reader, stats, tracks[owner], tracks[image], process, analyse),
-            crossed=common.crossed)
+            crossed=common.crossed, clipped=bool(clipped))
         levels_db = [detection.snr_db if row["snr_db"] is None else row["snr_db"]
                      for detection, row in zip(detections, rows)]
         rows = saturation.saturated_rows(rows, levels_db, clipped, capture_notes)
