@@ -414,13 +414,20 @@ class DopplerBand:
     dense_half_width_hz: float = 0.0
 
 
+def _disc_seen_deg(elevation_deg, *, towards_face_on):
+    """The elevation (deg, 0 edge-on to 90 face-on) a rotor disc is seen at, the drone seen at ``elevation_deg``
+    and its disc tilted ``ROTOR_TILT_DEG`` towards face-on (its tips' radial speed the least) or edge-on (the most)."""
+    turned = abs(elevation_deg) + (ROTOR_TILT_DEG if towards_face_on else -ROTOR_TILT_DEG)
+    return float(np.clip(turned, 0.0, 90.0))
+
+
 def hidden_aliasing_note(*, prf_hz, wavelength_m, elevation_deg):
     """Why a band that does not reach the span's ends may yet alias where the noise is read from the echo itself (a CW
     recording, :mod:`mdpipe.process.cw`): a rotor's tips (``MIN_ROTOR_TIP_MPS``, seen at the elevation given, tilted
     ``ROTOR_TILT_DEG`` towards face-on, else at ``HIDDEN_ELEVATION_DEG``) pass the span's radial speed
     ``lambda PRF / 4``, so that they fold over it, and a floor they fill evenly reads as noise. None where the span
     holds them."""
-    seen_deg = HIDDEN_ELEVATION_DEG if elevation_deg is None else min(abs(elevation_deg) + ROTOR_TILT_DEG, 90.0)
+    seen_deg = HIDDEN_ELEVATION_DEG if elevation_deg is None else _disc_seen_deg(elevation_deg, towards_face_on=True)
     least_mps = MIN_ROTOR_TIP_MPS * np.cos(np.deg2rad(seen_deg))
     span_mps = wavelength_m * prf_hz / 4
     if span_mps >= least_mps:
@@ -463,8 +470,8 @@ def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_
     chopping_hz = turn.chopping.value
     if aliased or tips_seen or chopping_hz is None:
         return turn
-    seen_deg = 0.0 if elevation_deg is None else max(0.0, abs(elevation_deg) - ROTOR_TILT_DEG)
-    fastest_mps = MAX_ROTOR_TIP_MPS * np.cos(np.deg2rad(min(seen_deg, 90.0)))
+    seen_deg = 0.0 if elevation_deg is None else _disc_seen_deg(elevation_deg, towards_face_on=False)
+    fastest_mps = MAX_ROTOR_TIP_MPS * np.cos(np.deg2rad(seen_deg))
     span_mps = wavelength_m * prf_hz / 4
     if span_mps >= fastest_mps or not _folds_onto_odd_orders(chopping_hz, prf_hz=prf_hz, dwell_s=dwell_s):
         return turn
@@ -1228,7 +1235,7 @@ def least_tip_speed_mps(chopping_hz, *, n_blades, elevation_deg):
     The echo gives ``r cos(beta)``, which has no floor while beta is unknown: a quadrotor seen from below (88 deg,
     discs tilted 3-4 deg) spread its 12 cm blades' tips over +-3.8 m/s, its comb at 218 Hz.
     """
-    seen_deg = None if elevation_deg is None else abs(elevation_deg) + ROTOR_TILT_DEG
+    seen_deg = None if elevation_deg is None else _disc_seen_deg(elevation_deg, towards_face_on=True)
     if seen_deg is None or seen_deg >= 90.0:
         return 0.0
     turn_hz = chopping_hz / (n_blades if n_blades is not None else combs.MAX_BLADES)
