@@ -352,3 +352,40 @@ def test_a_power_that_varies_slowly_does_not_fall_between_its_repeats():
     lit = np.where(t % 2.25 < 1.5, 1.0, 0.05)
     assert flashes._falls_between(lit * (floor + 30 * pulses), period)  # the whole echo swelling: still flashes
     assert not flashes._falls_between(floor + 20 * lit * (1 + 0.3 * np.cos(2 * np.pi * np.arange(n) / period)), period)
+
+
+def _flank_train(n, period_chirps, *, seed, ramp_share=0.8, flash=30.0, phase=0.3):
+    """A flank's power per chirp: unit exponential noise, and a flash of ``flash`` times it in the chirp whose
+    ramp (its first ``ramp_share``) holds each passage, every ``period_chirps``."""
+    power = np.random.default_rng(seed).exponential(1.0, n)
+    for t in np.arange(phase, n, period_chirps):
+        if t - int(t) < ramp_share:
+            power[int(t)] += flash
+    return power
+
+
+@pytest.mark.parametrize("period_chirps", [5.3, 7.24, 12.7])
+def test_flashes_on_both_flanks_give_a_whole_multiple_of_their_period(period_chirps):
+    """Flashes shorter than a chirp every 5.3-12.7 chirps, caught by ramps over 80 % of the chirp, on both range
+    flanks (noise drawn apart): their power recurs where the sampling comes round again, a whole multiple of the
+    flash period (3 or 4 of them here), within 1 %."""
+    from mdpipe.process.flashes import flank_flash_period
+    flanks = np.stack([_flank_train(2048, period_chirps, seed=1), _flank_train(2048, period_chirps, seed=2)], axis=1)
+    found = flank_flash_period(flanks, prf_hz=1757.0, min_period_s=1 / 3000)
+    assert found is not None
+    multiple = found * 1757.0 / period_chirps
+    assert round(multiple) >= 1 and multiple == pytest.approx(round(multiple), rel=0.01)
+
+
+def test_flashes_on_one_flank_only_or_at_unlike_periods_are_no_drones():
+    """Flashes on one flank, the other noise; or flashes on both at periods 1.5 times apart (two sources, not one
+    drone's two sides); or a power swelling slowly on both (no flashes): None."""
+    from mdpipe.process.flashes import flank_flash_period
+    noise = np.random.default_rng(5).exponential(1.0, 2048)
+    one = _flank_train(2048, 7.24, seed=1)
+    assert flank_flash_period(np.stack([one, noise], axis=1), prf_hz=1757.0, min_period_s=1 / 3000) is None
+    unlike = np.stack([one, _flank_train(2048, 7.24 * 1.5, seed=2)], axis=1)
+    assert flank_flash_period(unlike, prf_hz=1757.0, min_period_s=1 / 3000) is None
+    t = np.arange(2048)
+    swell = 1.0 + 0.8 * np.sin(2 * np.pi * t / 40.0) + 0.1 * noise
+    assert flank_flash_period(np.stack([swell, swell[::-1]], axis=1), prf_hz=1757.0, min_period_s=1 / 3000) is None

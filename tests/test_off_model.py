@@ -1994,3 +1994,51 @@ def test_a_chopping_read_unaliased_on_an_odd_fold_is_withheld_only_where_the_spa
         assert result.chopping.value == 114.6 and result.chopping.status == "ambiguous_period"
         assert result.rate.value is None and result.rate.status == "ambiguous_period"
         assert (result.n_blades, result.n_blades_source) == (2, "given")
+
+
+def test_a_drone_whose_flashes_land_in_its_range_flanks_is_read_a_drone(tmp_path):
+    """Scene 46 of the low-PRF sweep drawn at seed 556: a quadrotor 8.5 m out at 94 GHz flying 7.3 m/s, PRF 3.66 kHz,
+    ramps of 219 us (a tip at 71 m/s lands 10 bins, 6 m, off in range): its own bin held its body line and no
+    flashes, and it was read `none`. Its range flanks, 2.5-22 bins either side, show the flashes on both sides: a
+    drone, its chopping withheld (their period is a whole multiple of the chopping period, which one untold)."""
+    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=0.00021866, chirp_period_s=0.000273325,
+                 sample_rate_hz=292691.85065398336, n_samples=64, n_chirps=2048, n_channels=4)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 43.3827, "body_rcs_m2": 0.0736941,
+            "motion": {"position_m": [4.13572, 1.34675, 7.34127], "velocity_mps": [-7.27252, -0.567251, 0.0],
+                       "sway_amplitude_m": [0.019479, 0.0454707, 0.0140923], "sway_period_s": 3.24069},
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [338.328, 190.195, 152.285, 21.7232], "blade_rcs_m2": 0.00299946,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 0.660365,
+                       "tilt_deg": [0.203017, 0.785018, -2.47169, 3.61914], "blades": 2, "arm_m": 0.1963,
+                       "blade_length_m": 0.0864608, "rev_per_s": [131.176, -131.349, 131.276, -130.65],
+                       "blade_gains": [1.0, 1.0]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=22.3392, seed=762767029, elevation_deg=43.3827)
+    assert row["class"] == "drone" and row["range_m"] == pytest.approx(7.81, abs=0.6)
+    assert row["chopping_freq_hz"] is None and row["rotation_rate_hz"] is None
+    assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"
+    assert "in the range bins either side of the target" in row["notes"]
+
+
+def test_a_drone_read_as_wings_is_read_by_its_flanks_flashes(tmp_path):
+    """Scene 155 of the low-PRF sweep drawn at seed 556: a K-band quadrotor 7.3 m out, PRF 1.66 kHz, ramps of 482 us
+    (a tip at 65 m/s lands 7 bins off), one blade 1.56 times the others. Its own bin showed no flashes and a reach
+    swinging as a stroke's: read a bird. The flanks' flashes exclude wings: a drone, no wing reading."""
+    radar = dict(f_start_hz=24.0e9, f_stop_hz=24.1e9, ramp_up_s=0.000481974, chirp_period_s=0.000602468,
+                 sample_rate_hz=265574.4918356592, n_samples=128, n_chirps=2048, n_channels=2)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 5.20293, "body_rcs_m2": 0.0241692,
+            "motion": {"position_m": [3.98786, -3.56505, 6.82644], "velocity_mps": [-3.22238, 4.1298, 0.0],
+                       "sway_amplitude_m": [0.0560119, 0.0234034, 0.0674399], "sway_period_s": 2.04259},
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [150.851, 136.873, 50.0003, 59.1316], "blade_rcs_m2": 0.00880146,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 0.691145,
+                       "tilt_deg": [0.050947, 1.32612, -3.70358, -2.15335], "blades": 2, "arm_m": 0.252164,
+                       "blade_length_m": 0.104379, "rev_per_s": [95.1175, -97.7152, 98.878, -96.8643],
+                       "blade_gains": [1.0, 1.55741]}}
+    clutter = [{"type": "static", "name": f"clutter{i}", "range_m": r, "azimuth_deg": a, "rcs_m2": rcs}
+               for i, (r, a, rcs) in enumerate([(3.85079, 2.03101, 0.416064), (35.375, 4.71775, 0.54631)])]
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=2.79853, seed=1653412735, clutter=clutter, n_blades=2,
+                    elevation_deg=5.20293)
+    assert row["class"] == "drone"
+    assert row["chopping_freq_hz_status"] == "ambiguous_period" and row["rotation_rate_hz"] is None
+    assert row["wing_stroke_swing"] is None and row["wing_stroke_swing_status"] == "not_applicable"
+    assert row["wingbeat_freq_hz"] is None

@@ -62,3 +62,35 @@ def test_what_every_chirp_holds_alike_is_taken_out():
     views = ranging.flash_views(_Chirps(data), np.full(chirps, 20.0), np.array([1.0]), segments=8, side_bins=1.5,
                                 chunk_chirps=3)
     assert np.abs(views.parts).max() < 1e-4 and np.abs(views.sides).max() < 1e-4
+
+
+def test_the_flanks_gather_a_moving_tones_power_on_its_side_and_leave_static_clutter_out():
+    """Range flanks of a target at bin 20 of 128 samples, from 2.5 to 6 bins off: a moving tone (its phase turning
+    once over the chirps) at bin 25 lands in the farther flank only, its power there (sum(w) / 2)^2 = 31.75^2 (one
+    bin of the flank holds it; its leakage into the neighbours' bins adds the window's squared response: Hann's
+    at +-1 bin, 1/4 each); a static tone at bin 16 (in the nearer flank) is taken out; a tone at bin 21, inside the
+    main lobe, stays out of both."""
+    n, chirps = 128, 12
+    data = np.zeros((chirps, 1, n), dtype=np.float32)
+    samples = np.arange(n)
+    for k in range(chirps):
+        data[k, 0] = (np.cos(2 * np.pi * 25.0 * samples / n + 2 * np.pi * k / chirps)
+                      + 3.0 * np.cos(2 * np.pi * 16.0 * samples / n + 0.4)
+                      + 2.0 * np.cos(2 * np.pi * 21.0 * samples / n + 2 * np.pi * k / chirps))
+    flanks = ranging.flank_powers(_Chirps(data), np.full(chirps, 20.0), np.array([1.0]), inner_bins=2.5,
+                                  outer_bins=6.0, chunk_chirps=5)
+    assert flanks.shape == (chirps, 2)
+    peak = (np.hanning(n).sum() / 2) ** 2
+    assert flanks[:, 1] == pytest.approx(peak * 1.5, rel=0.02)  # bins 24, 25, 26 of the farther flank (23-26)
+    assert np.all(flanks[:, 0] < 1e-3 * peak)
+
+
+def test_the_flanks_follow_the_track_in_zero_padded_bins():
+    """The same moving tone at bin 25, the track given on a 4x padded grid (80.0 = bin 20): the farther flank."""
+    n, chirps = 128, 6
+    data = np.zeros((chirps, 1, n), dtype=np.float32)
+    for k in range(chirps):
+        data[k, 0] = np.cos(2 * np.pi * 25.0 * np.arange(n) / n + 2 * np.pi * k / chirps)
+    flanks = ranging.flank_powers(_Chirps(data), np.full(chirps, 80.0), np.array([1.0]), inner_bins=2.5,
+                                  outer_bins=6.0, zero_pad=4, chunk_chirps=4)
+    assert np.all(flanks[:, 1] > 1e3 * flanks[:, 0])

@@ -17,8 +17,9 @@ from mdpipe.process import combs, doppler, mains, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import least_squares_line, moving_average, running_median, triangular_average
-from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flash_period, on_chirp_grid, power_period,
-                                    ramp_readable, ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate)
+from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flank_flash_period, flash_period, on_chirp_grid,
+                                    power_period, ramp_readable, ramp_repeat, ramp_repeats_whole, ramp_train,
+                                    sides_alternate)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, ShortBursts,
@@ -481,6 +482,29 @@ def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_
             f"{2 * chopping_hz:.4g} Hz on the odd orders of its comb (another PRF tells which)")
     return replace(turn, chopping=Measured(chopping_hz, "ambiguous_period", note),
                    rate=withheld("ambiguous_period", note), rotor_rates_hz=())
+
+
+def _flashes_in_flanks(turn, flanks, *, prf_hz):
+    """``turn`` (no flashes found in the target's own bin), or blade flashes found in its range flanks (``flanks()``,
+    :func:`mdpipe.process.flashes.flank_flash_period`): the chopping and rate withheld as ``ambiguous_period``, a
+    drone's flashes seen, the period they recur at a whole multiple of the chopping period. The wings are not read
+    then: flashes on both flanks at once, recurring faster than 40 Hz, are no wings' echo. Read only about a body
+    line (the caller asks): a detection without one may itself be one side's flashes, whose "flanks" hold the other
+    side's and the hub (low-PRF seed 555, scene 84: such an image read so was taken for the hub between its images,
+    and the drone's row moved 5.7 m off it).
+
+    At a low PRF and a long ramp a blade's flash lands metres off its drone, and the drone's own bin keeps its body
+    line and little else (low-PRF sweep, seed 556: of the drones whose tips land 4-32 bins off, 24 of 141 read
+    ``none`` or ``bird`` for no flashes, though the flanks showed them 20 dB over the noise)."""
+    period_s = flank_flash_period(flanks(), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
+    if period_s is None:
+        return turn
+    note = (f"rotation not estimable: blade flashes recur every {period_s * 1e3:.3g} ms in the range bins either "
+            "side of the target, where a long ramp moves its blades' flashes (their Doppler times the ramp), none in "
+            "its own; flashes shorter than a chirp recur where the chirps catch them alike again, and one blade "
+            f"differing repeats once a turn: the chopping is a whole multiple of {1 / period_s:.4g} Hz, which one the "
+            "flanks do not tell")
+    return Rotation.withheld("ambiguous_period", note)
 
 
 def _views_without_hum(flash_views, hum, *, prf_hz):
@@ -1798,7 +1822,7 @@ def _columns(primary, measured, derived=None):
 
 
 def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=None, flash_views=None,
-                   ramp_share=1.0, ranged=True, hum=mains.SEARCH):
+                   ramp_share=1.0, ranged=True, hum=mains.SEARCH, flanks=None):
     """Measure every feature of one target's complex slow-time ``signal`` (channels combined).
 
     Parameters
@@ -1823,6 +1847,10 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     hum : Hum or None
         The mains hum the caller took out of ``signal`` already (None: it found none); by default it is looked for
         here (``params.mains_hz``) and taken out of the echo and its ``flash_views`` (:mod:`mdpipe.process.mains`).
+    flanks : callable or None
+        Returns the power of the range bins either side of the target, where a long ramp moves its blades' flashes
+        (:func:`mdpipe.process.ranging.flank_powers`), read only where its own echo shows a body line and no flashes
+        (:func:`_flashes_in_flanks`); None: not read (a short ramp, a CW recording, bursts or clipping in the capture).
     """
     dwell_s = len(signal) / prf_hz
     s = np.asarray(signal, dtype=np.complex128)
@@ -1869,8 +1897,12 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     if folded is not turn:
         turn = folded
         tip, length, edges = lengths(turn)  # (no rate: none)
-    wings_may_repeat = (turn.chopping.value is None and turn.chopping.status == "ambiguous_period"
+    flanked = turn
+    if flanks is not None and hum is None and body.track_hz is not None and turn.chopping.status == "no_flashes":
+        flanked = _flashes_in_flanks(turn, flanks, prf_hz=prf_hz)  # (no rate either way: the lengths stand)
+    wings_may_repeat = (flanked is turn and turn.chopping.value is None and turn.chopping.status == "ambiguous_period"
                         and not band.aliased)  # (or wings' beat: see _wings_over_ambiguous_period)
+    turn = flanked
     if turn.chopping.value is not None or (turn.chopping.status in ROTOR_EVIDENCE and not wings_may_repeat):
         beat = flaps = stroke = withheld("not_applicable", "")  # blade flashes exclude a bird
     elif turn.chopping.status == "not_rotor":  # a comb spaced over any wingbeat (combs.MIN_CHOP_HZ up)

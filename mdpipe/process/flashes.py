@@ -67,6 +67,7 @@ RESOLVED_CHIRPS = 4         # a power peak this wide (at half its prominence) or
 RESOLVED_SIGMAS = 8.0       # ... read only on a peak this many standard errors high (noise widened two single-rotor
                             # trains' peaks at 6.1 and 6.6 standard errors, both read at a multiple of the flashes')
 AROUND = 0.03               # a lag period / k is looked for within +-3 %
+FLANK_RATIOS = (1.0, 2.0, 0.5)  # two range flanks' flash periods agree at these ratios (a turn and a chopping)
 RAMP_PARTS = 8              # the ramp is cut in this many parts to see where in it a flash falls
 RAMP_SUB_SHARE = 0.5        # resolved within the ramp, a flash period repeats with this share of what its seen flashes
                             # would show or more (0.77-0.96 of a multiple's in trains the whole ramps read at 2 and 3
@@ -240,7 +241,11 @@ def power_period(micro_signal, *, prf_hz, min_period_s):
     What else repeats in a power fails the shape: two lines beating (the power a sinusoid: a peak half its
     lag wide), a wing's echo (slowly modulated: a baseline of 0.2-0.7 at these lags).
     """
-    power = np.abs(micro_signal) ** 2
+    return period_of_power(np.abs(micro_signal) ** 2, prf_hz=prf_hz, min_period_s=min_period_s)
+
+
+def period_of_power(power, *, prf_hz, min_period_s):
+    """:func:`power_period` of a ``power`` (per chirp) already formed."""
     if not np.var(power) > 1e-12 * np.mean(power) ** 2:
         return None  # a constant power (its rounding would be normalised to unit variance)
     r = autocorrelation(power, signed=True)
@@ -265,6 +270,28 @@ def power_period(micro_signal, *, prf_hz, min_period_s):
     sampled = width < RESOLVED_CHIRPS or sigmas < RESOLVED_SIGMAS  # flashes that may fall between chirps
     return PowerPeriod(found.period_s, _repeats_whole(r, lag, floor=SUB_SIGMAS * standard_error, sampled=sampled,
                                                       shortest=max(MIN_SHAPE_CHIRPS, width / POWER_PEAK_WIDTH)))
+
+
+def flank_flash_period(flanks, *, prf_hz, min_period_s):
+    """The period (s) of blade flashes in both range flanks of a target (``flanks`` (n_chirps, 2), the power of
+    each per chirp: :func:`mdpipe.process.ranging.flank_powers`), else None.
+
+    Each flank holds one side's flashes (an up-chirp's beat moves the approaching blades' one way and the receding
+    blades' the other), which come once per chopping period whatever the blade count; their power recurs there, or
+    once a turn where one blade differs, or, flashes shorter than a chirp, where the chirps catch them alike again
+    (trains every 5.3-12.7 chirps read at 3 and 4 periods). Both flanks must show such a period
+    (:func:`period_of_power`: short flashes on a floor, not a swell), at ``FLANK_RATIOS`` of each other within
+    ``AROUND``; the shorter is returned: a whole multiple of the chopping period, which one untold."""
+    periods = []
+    for power in np.asarray(flanks, dtype=np.float64).T:
+        found = period_of_power(power, prf_hz=prf_hz, min_period_s=min_period_s)
+        if found is None:
+            return None
+        periods.append(found.period_s)
+    ratio = periods[0] / periods[1]
+    if not any(abs(ratio / r - 1) <= AROUND for r in FLANK_RATIOS):
+        return None
+    return min(periods)
 
 
 def _repeats_whole(r, lag, *, floor, sampled, shortest):

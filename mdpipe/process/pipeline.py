@@ -12,7 +12,7 @@ from mdpipe.process import (flashes, images, impulses, interference, memory, ran
                             transmitters)
 from mdpipe.process.classify import classify
 from mdpipe.process.cw import process_recording
-from mdpipe.process.features import RangeTrack, analyse_target
+from mdpipe.process.features import MAX_ROTOR_TIP_MPS, RangeTrack, analyse_target
 from mdpipe.process.result import CaptureResult, base_row
 from mdpipe.process.filters import least_squares_line
 
@@ -20,6 +20,8 @@ MIN_CHIRPS = 64
 TRACK_POINTS = 256  # range track points kept per target (for its range rate and extent)
 SAME_TRACK_BINS = 1.5  # two detections whose tracks are this close on average (range bins) are one target
 HUB_FIXED_BINS = 1.0   # a drone's hub between its range-Doppler images moving less over the dwell is held at one range
+FLANK_INNER_BINS = 2.5  # a target's range flanks begin past its Hann main lobe (2 bins) and half a bin of its track
+FLANK_MIN_REACH_BINS = 4.0  # read where the fastest tips' flashes land this far off or farther
 
 
 def target_tracks(stats, detections, process, n_samples):
@@ -79,16 +81,37 @@ def flash_views(reader, track_bins, weight, process):
                                                        chunk_chirps=process.chunk_chirps))
 
 
-def analysed_row(reader, detection, target, track_bins, *, process, noise_power, base, capture_notes):
+def flank_reach_bins(params):
+    """How far (range bins) a long ramp moves the flash of the fastest rotor tips (``MAX_ROTOR_TIP_MPS``): their
+    Doppler times the sampled ramp."""
+    return 2.0 * MAX_ROTOR_TIP_MPS / params.wavelength_m * params.sampled_duration_s
+
+
+def flank_views(reader, track_bins, weight, process):
+    """A cached callable: the power of the target's range flanks (:func:`mdpipe.process.ranging.flank_powers`), from
+    ``FLANK_INNER_BINS`` to the fastest tips' reach (:func:`flank_reach_bins`) and the main lobe's 2 bins beyond,
+    read on its first call only; None where that reach is under ``FLANK_MIN_REACH_BINS`` (a short ramp: the flashes
+    stay in the target's own bin and its sides, :func:`flash_views`)."""
+    reach = flank_reach_bins(reader.params)
+    if reach < FLANK_MIN_REACH_BINS:
+        return None
+    return functools.cache(lambda: ranging.flank_powers(reader, track_bins, weight, inner_bins=FLANK_INNER_BINS,
+                                                        outer_bins=reach + 2.0, window=process.range_window,
+                                                        zero_pad=process.zero_pad, chunk_chirps=process.chunk_chirps))
+
+
+def analysed_row(reader, detection, target, track_bins, *, process, noise_power, base, capture_notes, flanks=True):
     """One target's row (``base()`` filled in: range, features, class and notes) and its analysis, from its
     ``detection``, ``target`` (:func:`target_signals`: range track, slow time, RX gain, RX weights) and per-chirp
-    ``track_bins``."""
+    ``track_bins``; ``flanks``: whether its range flanks may be read (:func:`flank_views`; not where bursts of another
+    radar light every bin at once, nor where samples clip)."""
     params = reader.params
     track, signal, rx_gain_db, weight = target
     analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m, noise_power=noise_power,
                               params=process, track=None if detection.fixed_bin is not None else track,  # fixed: no track
                               flash_views=flash_views(reader, track_bins, weight, process),
-                              ramp_share=params.sampled_duration_s / params.chirp_period_s)
+                              ramp_share=params.sampled_duration_s / params.chirp_period_s,
+                              flanks=flank_views(reader, track_bins, weight, process) if flanks else None)
     row = base()
     row.update(range_m=detection.range_m, range_bin=int(detection.bin), range_min_m=float(track.range_m.min()),
                range_max_m=float(track.range_m.max()), rx_gain_db=rx_gain_db)
@@ -263,7 +286,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         layout = reader.layout.describe()
         analyse = functools.partial(analysed_row, reader, process=process, noise_power=noise,
                                     base=lambda: _base_row(path, stats, process, params, clipped, common, cycle),
-                                    capture_notes=capture_notes)
+                                    capture_notes=capture_notes, flanks=not (common.crossed or clipped))
         for index, (detection, target, (_, track_bins, _)) in enumerate(zip(detections, targets, tracks)):
             row, analysis = analyse(detection, target, track_bins)
             row["target"] = index

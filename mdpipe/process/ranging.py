@@ -422,3 +422,50 @@ def flash_views(reader, track_bins, weight, *, segments, side_bins, window="hann
         kernel, share = kernels(first, min(first + chunk_chirps, reader.n_chirps))
         place(first, -(kernel @ mean).astype(np.complex64), share)
     return FlashViews(views[:, :segments], views[:, segments:])
+
+
+FLANK_MAX_BINS = 64  # a flank reads at most this many bins (a bounded memory: 3 kB a chirp for both, see memory)
+
+
+def flank_powers(reader, track_bins, weight, *, inner_bins, outer_bins, window="hann", zero_pad=1, chunk_chirps=256):
+    """Pass 2c: the moving power, per chirp, of the range bins either side of a target, from ``inner_bins`` to
+    ``outer_bins`` (not padded; at most ``FLANK_MAX_BINS`` of them) off its track (``track_bins``, padded grid, its
+    mean over each read): (n_chirps, 2) in V^2, the nearer range's flank first. One more read of the capture.
+
+    A long ramp moves a blade's flash in range by its Doppler times the sampled ramp (an up-chirp's beat holds both):
+    at a low PRF the flashes of tips that fold many times in slow time land metres off their drone, on both sides,
+    and its own bin holds little of them. The flanks gather them. The channels are combined with ``weight`` (C,);
+    static clutter, the mean chirp's transform by the same kernels, is taken out of every read, as
+    :func:`slow_time` does; bins outside the FFT's positive half are left out.
+    """
+    params = reader.params
+    n = params.n_samples
+    taper = range_window(window, n)
+    m = np.arange(n) - (n - 1) / 2
+    outer = min(int(np.floor(outer_bins)), int(np.ceil(inner_bins)) + FLANK_MAX_BINS - 1)
+    offsets = np.arange(int(np.ceil(inner_bins)), outer + 1)
+    offsets = np.concatenate([-offsets[::-1], offsets])  # the nearer flank, then the farther
+    near = len(offsets) // 2
+    weight = np.asarray(weight, dtype=np.complex64)
+    parts_of_weight = np.stack([weight.real, weight.imag])  # (2, C): the real chirps combined by real products
+    columns = np.zeros((reader.n_chirps, len(offsets)), dtype=np.complex64)
+    total = np.zeros(n, dtype=np.complex128)
+
+    def kernel(first, stop):
+        centre = int(round(float(np.mean(track_bins[first:stop])) / zero_pad))
+        bins = centre + offsets
+        k = taper * np.exp(-2j * np.pi * np.outer(bins, m) / n)
+        k[(bins < 1) | (bins > n // 2 - 1)] = 0.0
+        return k.astype(np.complex64)
+
+    for first, block in reader.iter_chunks(chunk_chirps=chunk_chirps):
+        real_imag = np.matmul(parts_of_weight, block)
+        combined = (real_imag[:, 0] + 1j * real_imag[:, 1]).astype(np.complex64)
+        columns[first:first + block.shape[0]] = combined @ kernel(first, first + block.shape[0]).T
+        total += combined.sum(axis=0)
+    mean = total / max(reader.n_chirps, 1)
+    for first in range(0, reader.n_chirps, chunk_chirps):
+        stop = min(first + chunk_chirps, reader.n_chirps)
+        columns[first:stop] -= (kernel(first, stop) @ mean).astype(np.complex64)
+    power = (np.abs(columns) ** 2).astype(np.float64)
+    return np.stack([power[:, :near].sum(axis=1), power[:, near:].sum(axis=1)], axis=1)
