@@ -378,8 +378,9 @@ def test_flashes_on_both_flanks_give_a_whole_multiple_of_their_period(period_chi
 
 
 def test_flashes_on_one_flank_only_or_at_unlike_periods_are_no_drones():
-    """Flashes on one flank, the other noise; or flashes on both at periods 1.5 times apart (two sources, not one
-    drone's two sides); or a power swelling slowly on both (no flashes): None."""
+    """Flashes on one flank, the other noise; or flashes on both whose powers repeat at periods not alike (every 7.24
+    and 10.86 chirps, read at 28.96 and 11: not within 3 % of 1, 2 or 1/2 of each other); or a power swelling
+    slowly on both (no flashes): None."""
     from mdpipe.process.flashes import flank_flash_period
     noise = np.random.default_rng(5).exponential(1.0, 2048)
     one = _flank_train(2048, 7.24, seed=1)
@@ -389,3 +390,17 @@ def test_flashes_on_one_flank_only_or_at_unlike_periods_are_no_drones():
     t = np.arange(2048)
     swell = 1.0 + 0.8 * np.sin(2 * np.pi * t / 40.0) + 0.1 * noise
     assert flank_flash_period(np.stack([swell, swell[::-1]], axis=1), prf_hz=1757.0, min_period_s=1 / 3000) is None
+
+
+def test_flanks_reading_a_turn_and_a_chopping_agree():
+    """One flank's flashes every 10 chirps, the other's every 10 chirps with every second flash 3 times brighter
+    (one blade differing, seen on that side): their powers repeat at 10 and 20 chirps, a factor 2 apart, which
+    agree; the shorter is returned."""
+    from mdpipe.process.flashes import flank_flash_period, period_of_power
+    even = _flank_train(2048, 10.0, seed=3)
+    tagged = _flank_train(2048, 20.0, seed=4, flash=90.0) + _flank_train(2048, 20.0, seed=5, phase=10.3) - 1.0
+    periods = [period_of_power(p, prf_hz=3000.0, min_period_s=1 / 3000).period_s * 3000.0 for p in (even, tagged)]
+    assert periods == pytest.approx([10.0, 20.0], rel=1e-3)  # the chopping on one side, the turn on the other
+    found = flank_flash_period(np.stack([even, tagged], axis=1), prf_hz=3000.0, min_period_s=1 / 3000)
+    assert found * 3000.0 == pytest.approx(10.0, rel=1e-3)
+    assert flank_flash_period(np.stack([tagged, even], axis=1), prf_hz=3000.0, min_period_s=1 / 3000) == found

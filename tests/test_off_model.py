@@ -1998,9 +1998,10 @@ def test_a_chopping_read_unaliased_on_an_odd_fold_is_withheld_only_where_the_spa
 
 def test_a_drone_whose_flashes_land_in_its_range_flanks_is_read_a_drone(tmp_path):
     """Scene 46 of the low-PRF sweep drawn at seed 556: a quadrotor 8.5 m out at 94 GHz flying 7.3 m/s, PRF 3.66 kHz,
-    ramps of 219 us (a tip at 71 m/s lands 10 bins, 6 m, off in range): its own bin held its body line and no
-    flashes, and it was read `none`. Its range flanks, 2.5-22 bins either side, show the flashes on both sides: a
-    drone, its chopping withheld (their period is a whole multiple of the chopping period, which one untold)."""
+    ramps of 219 us (its tips, 71 m/s seen from 43 deg, land 7 bins, 4.3 m, off in range): its own bin held its
+    body line and no flashes, and it was read `none`. Its range flanks, 3-22 bins either side, show the flashes on
+    both sides: a drone, its chopping withheld (their period is a whole multiple of the chopping period, which one
+    untold)."""
     radar = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=0.00021866, chirp_period_s=0.000273325,
                  sample_rate_hz=292691.85065398336, n_samples=64, n_chirps=2048, n_channels=4)
     quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 43.3827, "body_rcs_m2": 0.0736941,
@@ -2021,7 +2022,7 @@ def test_a_drone_whose_flashes_land_in_its_range_flanks_is_read_a_drone(tmp_path
 
 def test_a_drone_read_as_wings_is_read_by_its_flanks_flashes(tmp_path):
     """Scene 155 of the low-PRF sweep drawn at seed 556: a K-band quadrotor 7.3 m out, PRF 1.66 kHz, ramps of 482 us
-    (a tip at 65 m/s lands 7 bins off), one blade 1.56 times the others. Its own bin showed no flashes and a reach
+    (its tips at 63 m/s land 4.9 bins, 7.3 m, off), one blade 1.56 times the others. Its own bin showed no flashes and a reach
     swinging as a stroke's: read a bird. The flanks' flashes exclude wings: a drone, no wing reading."""
     radar = dict(f_start_hz=24.0e9, f_stop_hz=24.1e9, ramp_up_s=0.000481974, chirp_period_s=0.000602468,
                  sample_rate_hz=265574.4918356592, n_samples=128, n_chirps=2048, n_channels=2)

@@ -94,3 +94,25 @@ def test_the_flanks_follow_the_track_in_zero_padded_bins():
     flanks = ranging.flank_powers(_Chirps(data), np.full(chirps, 80.0), np.array([1.0]), inner_bins=2.5,
                                   outer_bins=6.0, zero_pad=4, chunk_chirps=4)
     assert np.all(flanks[:, 1] > 1e3 * flanks[:, 0])
+
+
+@pytest.mark.parametrize("weight, gain", [(np.array([1.0, -1.0j]) / np.sqrt(2), 1.0),
+                                          (np.array([1.0, 1.0j]) / np.sqrt(2), 0.0)])
+def test_the_flanks_combine_channels_as_the_slow_time_does(weight, gain):
+    """A moving tone at bin 23 on two channels, the second a quarter turn behind in the IF (so a quarter turn ahead
+    in the conjugated DFT): the farther flank's power 3 bins off a target at bin 20 equals |range side|^2 read 3 bins
+    off by :func:`ranging.flash_views` (the slow time's DFT convention and channel weights). The weight (1, -j)
+    adds the channels (power 2 x 31.75^2), (1, j) cancels them; an unconjugated DFT would swap the two."""
+    n, chirps = 128, 8
+    data = np.zeros((chirps, 2, n), dtype=np.float32)
+    samples = np.arange(n)
+    for k in range(chirps):
+        data[k, 0] = np.cos(2 * np.pi * 23.0 * samples / n + 2 * np.pi * k / chirps)
+        data[k, 1] = np.cos(2 * np.pi * 23.0 * samples / n + 2 * np.pi * k / chirps - np.pi / 2)
+    flanks = ranging.flank_powers(_Chirps(data), np.full(chirps, 20.0), weight, inner_bins=3.0, outer_bins=3.0,
+                                  chunk_chirps=3)
+    sides = ranging.flash_views(_Chirps(data), np.full(chirps, 20.0), weight, segments=4, side_bins=3.0,
+                                chunk_chirps=3).sides
+    assert flanks[:, 1] == pytest.approx(np.abs(sides[:, 1]) ** 2, rel=1e-4, abs=1e-3)
+    peak = 2 * (np.hanning(n).sum() / 2) ** 2
+    assert flanks[:, 1] == pytest.approx(np.full(chirps, gain * peak), rel=1e-3, abs=1e-6 * peak)

@@ -15,6 +15,7 @@ import numpy as np
 from mdpipe.errors import ParameterError
 
 SPEED_OF_SOUND_MPS = 343.0  # no blade tip of a drone's rotor moves faster
+MAX_ROTOR_TIP_MPS = 150.0   # multirotor blade tips move at 20-150 m/s
 
 
 def blade_angles_rad(t_s, *, rotation_rate_hz, n_blades, phase0_rad=0.0):

@@ -68,8 +68,7 @@ MAX_RAMP_DIVISOR = 6         # a power period not whole within the ramp: its hal
 POWER_COMB_TOLERANCE = 0.1   # an unaliased comb and its echo's power rate are a whole ratio apart within 10 %: rotors
                              # apart in rate (chopping at 123-134 Hz, the power repeated with the fastest, 133.1 Hz,
                              # the comb was their median, 125.2 Hz)
-MIN_ROTOR_TIP_MPS = 20.0     # multirotor blade tips move at 20-150 m/s (classify.py) ...
-MAX_ROTOR_TIP_MPS = 150.0    # ... (a span under the fastest may hold tips folded unseen)
+MIN_ROTOR_TIP_MPS = 20.0     # multirotor blade tips move at 20 m/s or more (classify.py; the fastest: rotor.py) ...
 HIDDEN_ELEVATION_DEG = 60.0  # ... and, the elevation not given, are taken as seen within this of edge-on
 MIN_BLADE_M = 0.005          # a blade this short, at the elevation given (its disc tilted ROTOR_TILT_DEG towards
                              # face-on), reaches the least r cos(beta) of any rotor: a comb narrower is not one
@@ -458,7 +457,7 @@ def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_
     """``turn`` (a :class:`Rotation`), its chopping frequency kept as ``ambiguous_period`` (it or twice it; the blade
     count as it was; the rate withheld) where it was read in a band that shows no aliasing, no flash showed both the
     tips' Doppler edges inside the span (``tips_seen``: the blade length's reading, :func:`blade_length`, got them),
-    the span (``lambda PRF / 4``) holds no tips of the fastest rotor (``MAX_ROTOR_TIP_MPS``, seen at the elevation
+    the span (``lambda PRF / 4``) holds no tips of the fastest rotor (``rotor.MAX_ROTOR_TIP_MPS``, seen at the elevation
     given, its disc tilted ``ROTOR_TILT_DEG`` towards edge-on; else edge-on), and the PRF lies within the Hann main
     lobe of an odd multiple of it (:func:`_folds_onto_odd_orders`).
     Tips folded once, too faint to light the span's ends, then put twice that chopping's lines on the odd orders of a
@@ -472,7 +471,7 @@ def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_
     if aliased or tips_seen or chopping_hz is None:
         return turn
     seen_deg = 0.0 if elevation_deg is None else _disc_seen_deg(elevation_deg, towards_face_on=False)
-    fastest_mps = MAX_ROTOR_TIP_MPS * np.cos(np.deg2rad(seen_deg))
+    fastest_mps = rotor.MAX_ROTOR_TIP_MPS * np.cos(np.deg2rad(seen_deg))
     span_mps = wavelength_m * prf_hz / 4
     if span_mps >= fastest_mps or not _folds_onto_odd_orders(chopping_hz, prf_hz=prf_hz, dwell_s=dwell_s):
         return turn
@@ -494,8 +493,9 @@ def _flashes_in_flanks(turn, flanks, *, prf_hz):
     and the drone's row moved 5.7 m off it).
 
     At a low PRF and a long ramp a blade's flash lands metres off its drone, and the drone's own bin keeps its body
-    line and little else (low-PRF sweep, seed 556: of the drones whose tips land 4-32 bins off, 24 of 141 read
-    ``none`` or ``bird`` for no flashes, though the flanks showed them 20 dB over the noise)."""
+    line and little else (the low-PRF sweep at seed 556: 22 of the 140 drones whose tips land 4-32 bins off and whose
+    lines a measurement can see read ``none`` or ``bird`` for no flashes; a K-band quadrotor's flashes spread 21 dB
+    over the noise across +-8 m of range, its own bin's body line 15 dB over them)."""
     period_s = flank_flash_period(flanks(), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
     if period_s is None:
         return turn
@@ -1897,12 +1897,11 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     if folded is not turn:
         turn = folded
         tip, length, edges = lengths(turn)  # (no rate: none)
-    flanked = turn
-    if flanks is not None and hum is None and body.track_hz is not None and turn.chopping.status == "no_flashes":
-        flanked = _flashes_in_flanks(turn, flanks, prf_hz=prf_hz)  # (no rate either way: the lengths stand)
-    wings_may_repeat = (flanked is turn and turn.chopping.value is None and turn.chopping.status == "ambiguous_period"
+    wings_may_repeat = (turn.chopping.value is None and turn.chopping.status == "ambiguous_period"
                         and not band.aliased)  # (or wings' beat: see _wings_over_ambiguous_period)
-    turn = flanked
+    if flanks is not None and hum is None and body.track_hz is not None and turn.chopping.status == "no_flashes":
+        # (no rate either way: the lengths stand; flashes on both flanks are no wings': wings_may_repeat stays False)
+        turn = _flashes_in_flanks(turn, flanks, prf_hz=prf_hz)
     if turn.chopping.value is not None or (turn.chopping.status in ROTOR_EVIDENCE and not wings_may_repeat):
         beat = flaps = stroke = withheld("not_applicable", "")  # blade flashes exclude a bird
     elif turn.chopping.status == "not_rotor":  # a comb spaced over any wingbeat (combs.MIN_CHOP_HZ up)

@@ -281,7 +281,10 @@ def flank_flash_period(flanks, *, prf_hz, min_period_s):
     once a turn where one blade differs, or, flashes shorter than a chirp, where the chirps catch them alike again
     (trains every 5.3-12.7 chirps read at 3 and 4 periods). Both flanks must show such a period
     (:func:`period_of_power`: short flashes on a floor, not a swell), at ``FLANK_RATIOS`` of each other within
-    ``AROUND``; the shorter is returned: a whole multiple of the chopping period, which one untold."""
+    ``AROUND``; the shorter is returned: a whole multiple of the chopping period, which one untold. That they are one
+    train is not shown: trains 4:3 apart, sampled so, both recur at their common multiple and pass (flashes still),
+    and one drone's two sides may recur at multiples not alike (a side seen differing at 4 periods, the other at 3)
+    and fail."""
     periods = []
     for power in np.asarray(flanks, dtype=np.float64).T:
         found = period_of_power(power, prf_hz=prf_hz, min_period_s=min_period_s)

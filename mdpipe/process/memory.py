@@ -57,8 +57,8 @@ def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_b
         thread, transforms them at the grid columns the targets' tracks cross, and keeps each target's
         slow time (bounded here by n_chirps x bins, complex64). The analysis holds each target's copies and
         spectrograms, and one target's flash views (``ranging.flash_views``) with their grid of ramp parts
-        (at most ``flashes.RAMP_MAX_SLOTS`` slots) and its range flanks (``ranging.flank_powers``: at most
-        ``ranging.FLANK_MAX_BINS`` bins a side).
+        (at most ``flashes.RAMP_MAX_SLOTS`` slots) and its range flanks where a long ramp has them read
+        (``ranging.flank_powers``: at most ``ranging.FLANK_MAX_BINS`` bins a side).
     """
     c, n = n_channels, n_samples
     k, b = gate_bin_counts(params, process)
@@ -81,8 +81,10 @@ def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_b
     workers = min(ranging.WORKERS, -(-n_chirps // rows))
     pass2 = workers * per_thread + 2 * n_chirps * n_bins * 2 * real + 8 * params.n_samples * n_bins + reads
     # one target's flash views at a time (read only where the features ask), and its bounded grid of ramp parts;
-    # its range flanks' bins (complex64) and their power as it is formed (float32 twice, float64)
-    views = n_chirps * ((flashes.RAMP_PARTS + 2) * FLASH_VIEW_BYTES + 2 * ranging.FLANK_MAX_BINS * (8 + 16))
+    # its range flanks' bins (complex64) where a long ramp has them read, and their power (float64, both flanks)
+    flanks = ranging.flank_bins(params, process.range_window)
+    flank_bytes = 0 if flanks is None else 2 * len(ranging.flank_offsets(*flanks)) * 8 + 16
+    views = n_chirps * ((flashes.RAMP_PARTS + 2) * FLASH_VIEW_BYTES + flank_bytes)
     share = max(params.sampled_duration_s / params.chirp_period_s, flashes.RAMP_MIN_SHARE)
     slots = min(n_chirps * flashes.RAMP_PARTS / share, flashes.RAMP_MAX_SLOTS)
     analysis = process.max_targets * n_chirps * ANALYSIS_BYTES_PER_CHIRP + views + int(slots) * RAMP_SLOT_BYTES

@@ -12,7 +12,7 @@ from mdpipe.process import (flashes, images, impulses, interference, memory, ran
                             transmitters)
 from mdpipe.process.classify import classify
 from mdpipe.process.cw import process_recording
-from mdpipe.process.features import MAX_ROTOR_TIP_MPS, RangeTrack, analyse_target
+from mdpipe.process.features import RangeTrack, analyse_target
 from mdpipe.process.result import CaptureResult, base_row
 from mdpipe.process.filters import least_squares_line
 
@@ -20,8 +20,6 @@ MIN_CHIRPS = 64
 TRACK_POINTS = 256  # range track points kept per target (for its range rate and extent)
 SAME_TRACK_BINS = 1.5  # two detections whose tracks are this close on average (range bins) are one target
 HUB_FIXED_BINS = 1.0   # a drone's hub between its range-Doppler images moving less over the dwell is held at one range
-FLANK_INNER_BINS = 2.5  # a target's range flanks begin past its Hann main lobe (2 bins) and half a bin of its track
-FLANK_MIN_REACH_BINS = 4.0  # read where the fastest tips' flashes land this far off or farther
 
 
 def target_tracks(stats, detections, process, n_samples):
@@ -81,22 +79,15 @@ def flash_views(reader, track_bins, weight, process):
                                                        chunk_chirps=process.chunk_chirps))
 
 
-def flank_reach_bins(params):
-    """How far (range bins) a long ramp moves the flash of the fastest rotor tips (``MAX_ROTOR_TIP_MPS``): their
-    Doppler times the sampled ramp."""
-    return 2.0 * MAX_ROTOR_TIP_MPS / params.wavelength_m * params.sampled_duration_s
-
-
 def flank_views(reader, track_bins, weight, process):
-    """A cached callable: the power of the target's range flanks (:func:`mdpipe.process.ranging.flank_powers`), from
-    ``FLANK_INNER_BINS`` to the fastest tips' reach (:func:`flank_reach_bins`) and the main lobe's 2 bins beyond,
-    read on its first call only; None where that reach is under ``FLANK_MIN_REACH_BINS`` (a short ramp: the flashes
-    stay in the target's own bin and its sides, :func:`flash_views`)."""
-    reach = flank_reach_bins(reader.params)
-    if reach < FLANK_MIN_REACH_BINS:
+    """A cached callable: the power of the target's range flanks (:func:`mdpipe.process.ranging.flank_powers`, over
+    :func:`mdpipe.process.ranging.flank_bins`), read on its first call only; None where a short ramp keeps the flashes
+    in the target's own bin and its sides (:func:`flash_views`)."""
+    bins = ranging.flank_bins(reader.params, process.range_window)
+    if bins is None:
         return None
-    return functools.cache(lambda: ranging.flank_powers(reader, track_bins, weight, inner_bins=FLANK_INNER_BINS,
-                                                        outer_bins=reach + 2.0, window=process.range_window,
+    return functools.cache(lambda: ranging.flank_powers(reader, track_bins, weight, inner_bins=bins[0],
+                                                        outer_bins=bins[1], window=process.range_window,
                                                         zero_pad=process.zero_pad, chunk_chirps=process.chunk_chirps))
 
 

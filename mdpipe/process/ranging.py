@@ -39,6 +39,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from mdpipe.io import INT16_FULL_SCALE
+from mdpipe.physics import rotor
 from mdpipe.process.doppler import periodic_hann
 
 PROBE_CHIRPS = 32
@@ -424,26 +425,48 @@ def flash_views(reader, track_bins, weight, *, segments, side_bins, window="hann
     return FlashViews(views[:, :segments], views[:, segments:])
 
 
-FLANK_MAX_BINS = 64  # a flank reads at most this many bins (a bounded memory: 3 kB a chirp for both, see memory)
+
+FLANK_MIN_REACH_BINS = 4.0  # range flanks read where the fastest tips' flashes land this far off or farther ...
+FLANK_MAX_BINS = 64         # ... at most this many bins a side (a bounded memory: 8 B a bin a chirp)
+MAIN_LOBE_BINS = {"hann": 2.0, "hamming": 2.0, "blackman": 3.0, "boxcar": 1.0}  # each range window's main lobe, +-
+
+
+def flank_bins(params, window):
+    """(inner, outer): how far (range bins) a target's range flanks reach, past its main lobe (``MAIN_LOBE_BINS`` of
+    ``window``) and half a bin of its track, out to where a long ramp moves the flashes of the fastest rotor tips
+    (``rotor.MAX_ROTOR_TIP_MPS``: their Doppler times the sampled ramp) and a main lobe beyond; None where that reach
+    is under ``FLANK_MIN_REACH_BINS``: the flashes stay in the target's own bin and its sides (:func:`flash_views`)."""
+    reach = 2.0 * rotor.MAX_ROTOR_TIP_MPS / params.wavelength_m * params.sampled_duration_s
+    if reach < FLANK_MIN_REACH_BINS:
+        return None
+    lobe = MAIN_LOBE_BINS[window]
+    return lobe + 0.5, reach + lobe
+
+
+def flank_offsets(inner_bins, outer_bins):
+    """The bins a flank reads, off the target's (rounded) bin: from ``ceil(inner_bins)`` to ``floor(outer_bins)``, at
+    most ``FLANK_MAX_BINS`` of them."""
+    first = int(np.ceil(inner_bins))
+    return np.arange(first, min(int(np.floor(outer_bins)), first + FLANK_MAX_BINS - 1) + 1)
 
 
 def flank_powers(reader, track_bins, weight, *, inner_bins, outer_bins, window="hann", zero_pad=1, chunk_chirps=256):
-    """Pass 2c: the moving power, per chirp, of the range bins either side of a target, from ``inner_bins`` to
-    ``outer_bins`` (not padded; at most ``FLANK_MAX_BINS`` of them) off its track (``track_bins``, padded grid, its
+    """Pass 2c: the moving power, per chirp, of the range bins either side of a target (:func:`flank_offsets` of
+    ``inner_bins`` and ``outer_bins``, not padded, off its track ``track_bins``, padded grid, rounded to a bin at its
     mean over each read): (n_chirps, 2) in V^2, the nearer range's flank first. One more read of the capture.
 
     A long ramp moves a blade's flash in range by its Doppler times the sampled ramp (an up-chirp's beat holds both):
     at a low PRF the flashes of tips that fold many times in slow time land metres off their drone, on both sides,
-    and its own bin holds little of them. The flanks gather them. The channels are combined with ``weight`` (C,);
-    static clutter, the mean chirp's transform by the same kernels, is taken out of every read, as
-    :func:`slow_time` does; bins outside the FFT's positive half are left out.
+    and its own bin holds little of them. The flanks gather them. The DFT is conjugated and the channels combined with
+    ``weight`` (C,) as in :func:`slow_time`; static clutter, the mean chirp's transform by the same kernels, is taken
+    out of every read; bins outside the FFT's positive half are left out. The flanks stay put within a read: a target
+    moving a bin or more over one brings its main lobe's edge into them (a power that swells, not flashes).
     """
     params = reader.params
     n = params.n_samples
     taper = range_window(window, n)
     m = np.arange(n) - (n - 1) / 2
-    outer = min(int(np.floor(outer_bins)), int(np.ceil(inner_bins)) + FLANK_MAX_BINS - 1)
-    offsets = np.arange(int(np.ceil(inner_bins)), outer + 1)
+    offsets = flank_offsets(inner_bins, outer_bins)
     offsets = np.concatenate([-offsets[::-1], offsets])  # the nearer flank, then the farther
     near = len(offsets) // 2
     weight = np.asarray(weight, dtype=np.complex64)
@@ -452,9 +475,8 @@ def flank_powers(reader, track_bins, weight, *, inner_bins, outer_bins, window="
     total = np.zeros(n, dtype=np.complex128)
 
     def kernel(first, stop):
-        centre = int(round(float(np.mean(track_bins[first:stop])) / zero_pad))
-        bins = centre + offsets
-        k = taper * np.exp(-2j * np.pi * np.outer(bins, m) / n)
+        bins = int(round(float(np.mean(track_bins[first:stop])) / zero_pad)) + offsets
+        k = taper * np.exp(2j * np.pi * np.outer(bins, m) / n)  # conjugated, as dft_matrix: the weights' convention
         k[(bins < 1) | (bins > n // 2 - 1)] = 0.0
         return k.astype(np.complex64)
 
@@ -464,8 +486,9 @@ def flank_powers(reader, track_bins, weight, *, inner_bins, outer_bins, window="
         columns[first:first + block.shape[0]] = combined @ kernel(first, first + block.shape[0]).T
         total += combined.sum(axis=0)
     mean = total / max(reader.n_chirps, 1)
+    power = np.zeros((reader.n_chirps, 2))
     for first in range(0, reader.n_chirps, chunk_chirps):
         stop = min(first + chunk_chirps, reader.n_chirps)
-        columns[first:stop] -= (kernel(first, stop) @ mean).astype(np.complex64)
-    power = (np.abs(columns) ** 2).astype(np.float64)
-    return np.stack([power[:, :near].sum(axis=1), power[:, near:].sum(axis=1)], axis=1)
+        read = np.abs(columns[first:stop] - (kernel(first, stop) @ mean).astype(np.complex64)).astype(np.float64) ** 2
+        power[first:stop] = np.stack([read[:, :near].sum(axis=1), read[:, near:].sum(axis=1)], axis=1)
+    return power
