@@ -404,3 +404,16 @@ def test_flanks_reading_a_turn_and_a_chopping_agree():
     found = flank_flash_period(np.stack([even, tagged], axis=1), prf_hz=3000.0, min_period_s=1 / 3000)
     assert found * 3000.0 == pytest.approx(10.0, rel=1e-3)
     assert flank_flash_period(np.stack([tagged, even], axis=1), prf_hz=3000.0, min_period_s=1 / 3000) == found
+
+
+def test_flank_flashes_repeating_with_the_grid_are_no_drones():
+    """Flashes on both flanks every 60 chirps at 3 kHz, 20 ms: the period of a 50 Hz supply's ripple on the gain,
+    which swells every static echo in the flanks alike. Under a 50 Hz (or 50-or-60 Hz) grid the rotation stays as the
+    target's own bin read it; told there is no grid, the flanks' flashes make it a drone's."""
+    from mdpipe.process.features import Rotation, _flashes_in_flanks
+    flanks = np.stack([_flank_train(3000, 60.0, seed=1), _flank_train(3000, 60.0, seed=2)], axis=1)
+    turn = Rotation.withheld("no_flashes", "rotation not estimable: no periodic blade flashes")
+    assert _flashes_in_flanks(turn, lambda: flanks, prf_hz=3000.0, mains_hz=(50.0, 60.0)) is turn
+    seen = _flashes_in_flanks(turn, lambda: flanks, prf_hz=3000.0, mains_hz=())
+    assert seen.chopping.status == seen.rate.status == "ambiguous_period" and seen.rate.value is None
+    assert "a whole multiple of 50 Hz" in seen.chopping.note

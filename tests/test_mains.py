@@ -156,3 +156,14 @@ def test_a_rotor_held_still_at_a_multiple_of_the_grid(tmp_path, rate_hz, prf_hz,
     assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] != "ok"
     row = process_capture(path, ProcessParams(mains_hz="none")).rows[0]
     assert row["mains_hum_hz"] is None and row["rotation_rate_hz"] == pytest.approx(rate_hz, rel=0.005)
+
+
+@pytest.mark.parametrize("period_s, mains_hz, repeats", [
+    (0.020, (50.0,), True), (0.010, (50.0,), True), (1 / 60, (50.0, 60.0), True), (1 / 120, (60.0,), True),
+    (0.0201, (50.0,), True),    # within the grid's 1 %
+    (0.0203, (50.0,), False),   # 1.5 % off
+    (0.015, (50.0, 60.0), False), (0.005, (50.0,), False),  # half a half period: no whole one
+    (0.020, (), False)])        # --mains-hz none: no grid
+def test_a_power_repeating_with_the_grid(period_s, mains_hz, repeats):
+    from mdpipe.process.mains import repeats_with_grid
+    assert repeats_with_grid(period_s, mains_hz) is repeats

@@ -483,21 +483,24 @@ def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_
                    rate=withheld("ambiguous_period", note), rotor_rates_hz=())
 
 
-def _flashes_in_flanks(turn, flanks, *, prf_hz):
+def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=()):
     """``turn`` (no flashes found in the target's own bin), or blade flashes found in its range flanks (``flanks()``,
     :func:`mdpipe.process.flashes.flank_flash_period`): the chopping and rate withheld as ``ambiguous_period``, a
     drone's flashes seen, the period they recur at a whole multiple of the chopping period. The wings are not read
     then: flashes on both flanks at once, recurring faster than 40 Hz, are no wings' echo. Read only about a body
     line (the caller asks): a detection without one may itself be one side's flashes, whose "flanks" hold the other
     side's and the hub (low-PRF seed 555, scene 84: such an image read so was taken for the hub between its images,
-    and the drone's row moved 5.7 m off it).
+    and the drone's row moved 5.7 m off it). Nor where the flanks repeat with the grid (``mains_hz``,
+    :func:`mdpipe.process.mains.repeats_with_grid`): a supply's ripple on the gain swells every static echo in them
+    alike (`make bench-impairments`: a K-band sparrow beside clutter read a drone whose flanks recurred every 20 ms
+    under a 1 % ripple, its own echo too faint for the hum to be found there).
 
     At a low PRF and a long ramp a blade's flash lands metres off its drone, and the drone's own bin keeps its body
     line and little else (the low-PRF sweep at seed 556: 22 of the 140 drones whose tips land 4-32 bins off and whose
     lines a measurement can see read ``none`` or ``bird`` for no flashes; a K-band quadrotor's flashes spread 21 dB
     over the noise across +-8 m of range, its own bin's body line 15 dB over them)."""
     period_s = flank_flash_period(flanks(), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
-    if period_s is None:
+    if period_s is None or mains.repeats_with_grid(period_s, mains_hz):
         return turn
     note = (f"rotation not estimable: blade flashes recur every {period_s * 1e3:.3g} ms in the range bins either "
             "side of the target, where a long ramp moves its blades' flashes (their Doppler times the ramp), none in "
@@ -1901,7 +1904,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                         and not band.aliased)  # (or wings' beat: see _wings_over_ambiguous_period)
     if flanks is not None and hum is None and body.track_hz is not None and turn.chopping.status == "no_flashes":
         # (no rate either way: the lengths stand; flashes on both flanks are no wings': wings_may_repeat stays False)
-        turn = _flashes_in_flanks(turn, flanks, prf_hz=prf_hz)
+        turn = _flashes_in_flanks(turn, flanks, prf_hz=prf_hz, mains_hz=params.mains_frequencies_hz)
     if turn.chopping.value is not None or (turn.chopping.status in ROTOR_EVIDENCE and not wings_may_repeat):
         beat = flaps = stroke = withheld("not_applicable", "")  # blade flashes exclude a bird
     elif turn.chopping.status == "not_rotor":  # a comb spaced over any wingbeat (combs.MIN_CHOP_HZ up)

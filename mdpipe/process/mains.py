@@ -52,6 +52,17 @@ STATUS = "mains_hum"     # a chopping comb on the hum's lines taken out: withhel
 SEARCH = object()        # analyse_target's default: look for hum in the echo (a caller may have taken it out)
 
 
+def repeats_with_grid(period_s, mains_hz):
+    """Whether a power repeating every ``period_s`` repeats with the grid: a whole number of half periods of one of
+    ``mains_hz`` (a supply's ripple on the gain, its fundamental or a rectifier's second harmonic), each within
+    ``GRID_TOLERANCE``."""
+    for f_hz in mains_hz:
+        halves = period_s * 2.0 * f_hz
+        if round(halves) >= 1 and abs(halves - round(halves)) <= GRID_TOLERANCE * round(halves):
+            return True
+    return False
+
+
 def notch_boxcar(n, prf_hz):
     """Samples of each of the two boxcars that average a hum line's envelope: half the dwell, at most
     ``NOTCH_S / 2``."""
