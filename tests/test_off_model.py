@@ -2022,8 +2022,8 @@ def test_a_drone_whose_flashes_land_in_its_range_flanks_is_read_a_drone(tmp_path
 
 def test_a_drone_read_as_wings_is_read_by_its_flanks_flashes(tmp_path):
     """Scene 155 of the low-PRF sweep drawn at seed 556: a K-band quadrotor 7.3 m out, PRF 1.66 kHz, ramps of 482 us
-    (its tips at 63 m/s land 4.9 bins, 7.3 m, off), one blade 1.56 times the others. Its own bin showed no flashes and a reach
-    swinging as a stroke's: read a bird. The flanks' flashes exclude wings: a drone, no wing reading."""
+    (its tips at 63 m/s land 4.9 bins, 7.3 m, off), one blade 1.56 times the others. Its own bin showed no flashes
+    and a reach swinging as a stroke's: read a bird. The flanks' flashes exclude wings: a drone, no wing reading."""
     radar = dict(f_start_hz=24.0e9, f_stop_hz=24.1e9, ramp_up_s=0.000481974, chirp_period_s=0.000602468,
                  sample_rate_hz=265574.4918356592, n_samples=128, n_chirps=2048, n_channels=2)
     quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 5.20293, "body_rcs_m2": 0.0241692,

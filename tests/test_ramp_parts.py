@@ -116,3 +116,20 @@ def test_the_flanks_combine_channels_as_the_slow_time_does(weight, gain):
     assert flanks[:, 1] == pytest.approx(np.abs(sides[:, 1]) ** 2, rel=1e-4, abs=1e-3)
     peak = 2 * (np.hanning(n).sum() / 2) ** 2
     assert flanks[:, 1] == pytest.approx(np.full(chirps, gain * peak), rel=1e-3, abs=1e-6 * peak)
+
+
+def test_the_flanks_reach_the_fastest_tips_past_the_main_lobe_of_every_range_window():
+    """A 94 GHz ramp of 219 us sampled: tips at 150 m/s land 2 x 150 / 3.19 mm x 219 us = 20.6 bins off, so a Hann
+    window's flanks run from 2.5 to 22.6 bins (its main lobe +-2 beyond either end); the bundled Radarlog captures'
+    ramp, 2048 samples at 40 MHz (51.2 us) at 76.5 GHz, reaches 3.9 bins, under the 4 read. Every range window has a
+    main lobe."""
+    from mdpipe.params import RANGE_WINDOWS
+    long_ramp = SimpleNamespace(wavelength_m=299792458.0 / 94e9, sampled_duration_s=219e-6)
+    inner, outer = ranging.flank_bins(long_ramp, "hann")
+    assert inner == 2.5 and outer == pytest.approx(20.6 + 2.0, abs=0.05)
+    assert list(ranging.flank_offsets(inner, outer)) == list(range(3, 23))
+    assert ranging.flank_bins(long_ramp, "blackman")[0] == 3.5
+    radarlog = SimpleNamespace(wavelength_m=299792458.0 / 76.5e9, sampled_duration_s=2048 / 40e6)
+    assert ranging.flank_bins(radarlog, "hann") is None
+    assert set(ranging.MAIN_LOBE_BINS) == set(RANGE_WINDOWS)
+    assert len(ranging.flank_offsets(2.5, 500.0)) == ranging.FLANK_MAX_BINS

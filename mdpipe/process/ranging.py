@@ -49,6 +49,9 @@ MIN_PROBED_CHIRPS = 2048
 FINE_STEPS = 8        # pass-2 evaluation grid: 1/8 range bin
 STILL_FINE_STEPS = 0.125  # a track moving less than 1/64 bin over a read: one column at its mean position
 WORKERS = min(2, os.cpu_count() or 1)  # threads reading and transforming one capture (see share_cores)
+FLANK_MIN_REACH_BINS = 4.0  # range flanks read where the fastest tips' flashes land this far off or farther ...
+FLANK_MAX_BINS = 64         # ... at most this many bins a side (a bounded memory: 8 B a bin a chirp)
+MAIN_LOBE_BINS = {"hann": 2.0, "hamming": 2.0, "blackman": 3.0, "boxcar": 1.0}  # each range window's main lobe, +-
 
 
 def share_cores(processes):
@@ -423,12 +426,6 @@ def flash_views(reader, track_bins, weight, *, segments, side_bins, window="hann
         kernel, share = kernels(first, min(first + chunk_chirps, reader.n_chirps))
         place(first, -(kernel @ mean).astype(np.complex64), share)
     return FlashViews(views[:, :segments], views[:, segments:])
-
-
-
-FLANK_MIN_REACH_BINS = 4.0  # range flanks read where the fastest tips' flashes land this far off or farther ...
-FLANK_MAX_BINS = 64         # ... at most this many bins a side (a bounded memory: 8 B a bin a chirp)
-MAIN_LOBE_BINS = {"hann": 2.0, "hamming": 2.0, "blackman": 3.0, "boxcar": 1.0}  # each range window's main lobe, +-
 
 
 def flank_bins(params, window):
