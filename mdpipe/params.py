@@ -310,7 +310,9 @@ class ProcessParams:
         A capture whose planned memory (:mod:`mdpipe.process.memory`) exceeds this many GiB is refused.
     mains_hz : str
         Mains hum searched in each echo and taken out (:mod:`mdpipe.process.mains`): ``auto`` (50 and 60 Hz),
-        ``50``, ``60``, or ``none`` (a receiver on batteries, or a rotor held at a multiple of the grid's rate).
+        ``50``, ``60``, or ``none`` (a receiver on batteries, or a rotor held at a multiple of the grid's rate); range
+        flanks recurring with these are not read as blade flashes (:mod:`mdpipe.process.features`), with ``none``
+        they may be.
     transmitters : str
         Transmitters the chirps take in turn (:mod:`mdpipe.process.transmitters`): ``auto`` (the file's ``TxSeq``,
         else found on the static echoes) or a count (``1``: every chirp read as one sequence); the first one's chirps

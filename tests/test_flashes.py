@@ -411,9 +411,27 @@ def test_flank_flashes_repeating_with_the_grid_are_no_drones():
     which swells every static echo in the flanks alike. Under a 50 Hz (or 50-or-60 Hz) grid the rotation stays as the
     target's own bin read it; told there is no grid, the flanks' flashes make it a drone's."""
     from mdpipe.process.features import Rotation, _flashes_in_flanks
-    flanks = np.stack([_flank_train(3000, 60.0, seed=1), _flank_train(3000, 60.0, seed=2)], axis=1)
+    from mdpipe.process.ranging import Flanks
+    flanks = Flanks(np.stack([_flank_train(3000, 60.0, seed=1), _flank_train(3000, 60.0, seed=2)], axis=1))
     turn = Rotation.withheld("no_flashes", "rotation not estimable: no periodic blade flashes")
     assert _flashes_in_flanks(turn, lambda: flanks, prf_hz=3000.0, mains_hz=(50.0, 60.0)) is turn
     seen = _flashes_in_flanks(turn, lambda: flanks, prf_hz=3000.0, mains_hz=())
     assert seen.chopping.status == seen.rate.status == "ambiguous_period" and seen.rate.value is None
     assert "a whole multiple of 50 Hz" in seen.chopping.note
+
+
+@pytest.mark.parametrize("common_period, drone", [(None, True), (20.0, False), (10.0, False), (60.0, False),
+                                                  (27.0, True)])
+def test_flank_flashes_that_every_range_bin_holds_alike_are_no_drones(common_period, drone):
+    """Flashes on both flanks every 20 chirps (3 kHz): a drone's, unless what every range bin of the capture holds in
+    common recurs a whole number of times (up to 6) as often or as seldom (here 1, 2 and 3: another radar's bursts,
+    too few to count the capture crossed, light both flanks alike); a common mode of noise, or recurring at 27
+    chirps, leaves them a drone's."""
+    from mdpipe.process.features import Rotation, _flashes_in_flanks
+    from mdpipe.process.ranging import Flanks
+    power = np.stack([_flank_train(3000, 20.0, seed=1), _flank_train(3000, 20.0, seed=2)], axis=1)
+    common = (np.random.default_rng(9).exponential(1.0, 3000) if common_period is None
+              else _flank_train(3000, common_period, seed=9, flash=10.0))
+    turn = Rotation.withheld("no_flashes", "rotation not estimable: no periodic blade flashes")
+    seen = _flashes_in_flanks(turn, lambda: Flanks(power, common), prf_hz=3000.0, mains_hz=())
+    assert (seen.chopping.status == "ambiguous_period") is drone and (seen is turn) is not drone

@@ -161,6 +161,7 @@ def test_a_rotor_held_still_at_a_multiple_of_the_grid(tmp_path, rate_hz, prf_hz,
 @pytest.mark.parametrize("period_s, mains_hz, repeats", [
     (0.020, (50.0,), True), (0.010, (50.0,), True), (1 / 60, (50.0, 60.0), True), (1 / 120, (60.0,), True),
     (0.0201, (50.0,), True),    # within the grid's 1 %
+    (0.0252, (60.0,), True),    # 3.024 half periods: within 1 % of 3 (the grid within 1 %), not of an absolute 0.01
     (0.0203, (50.0,), False),   # 1.5 % off
     (0.015, (50.0, 60.0), False), (0.005, (50.0,), False),  # half a half period: no whole one
     (0.020, (), False)])        # --mains-hz none: no grid

@@ -1997,24 +1997,27 @@ def test_a_chopping_read_unaliased_on_an_odd_fold_is_withheld_only_where_the_spa
 
 
 def test_a_drone_whose_flashes_land_in_its_range_flanks_is_read_a_drone(tmp_path):
-    """Scene 46 of the low-PRF sweep drawn at seed 556: a quadrotor 8.5 m out at 94 GHz flying 7.3 m/s, PRF 3.66 kHz,
-    ramps of 219 us (its tips, 71 m/s seen from 43 deg, land 7 bins, 4.3 m, off in range): its own bin held its
-    body line and no flashes, and it was read `none`. Its range flanks, 3-22 bins either side, show the flashes on
-    both sides: a drone, its chopping withheld (their period is a whole multiple of the chopping period, which one
-    untold)."""
-    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=0.00021866, chirp_period_s=0.000273325,
-                 sample_rate_hz=292691.85065398336, n_samples=64, n_chirps=2048, n_channels=4)
-    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 43.3827, "body_rcs_m2": 0.0736941,
-            "motion": {"position_m": [4.13572, 1.34675, 7.34127], "velocity_mps": [-7.27252, -0.567251, 0.0],
-                       "sway_amplitude_m": [0.019479, 0.0454707, 0.0140923], "sway_period_s": 3.24069},
+    """Scene 183 of the low-PRF sweep drawn at seed 556: a quadrotor 28.1 m out at 94 GHz, seen from 71 deg, PRF 2.76
+    kHz, ramps of 290 us (its tips, 79 m/s, 26 m/s radial, land 4.7 bins, 2.8 m, off in range): its own bin held its
+    body line and no flashes, and it was read `none`. Its range flanks, 3-29 bins either side, show flashes on both
+    sides that the capture's other bins do not: a drone, its chopping withheld (their period is a whole multiple of
+    the chopping period, which one untold)."""
+    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=0.000290263, chirp_period_s=0.000362829,
+                 sample_rate_hz=440979.38809975784, n_samples=128, n_chirps=2048, n_channels=1)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 71.0857, "body_rcs_m2": 0.00506839,
+            "motion": {"position_m": [25.4414, 2.69045, 10.9349], "velocity_mps": [1.00857, -0.12189, 0.0],
+                       "sway_amplitude_m": [0.152307, 0.0393048, 0.0919428], "sway_period_s": 4.41871},
             "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
-                       "phase_deg": [338.328, 190.195, 152.285, 21.7232], "blade_rcs_m2": 0.00299946,
-                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 0.660365,
-                       "tilt_deg": [0.203017, 0.785018, -2.47169, 3.61914], "blades": 2, "arm_m": 0.1963,
-                       "blade_length_m": 0.0864608, "rev_per_s": [131.176, -131.349, 131.276, -130.65],
+                       "phase_deg": [132.852, 143.905, 161.479, 300.715], "blade_rcs_m2": 0.00615141,
+                       "rate_wander_fraction": 0.00314035, "rate_wander_period_s": 1.15683,
+                       "tilt_deg": [3.44731, -1.46141, -3.17615, 4.73342], "blades": 2, "arm_m": 0.201763,
+                       "blade_length_m": 0.0937259, "rev_per_s": [134.868, -134.124, 135.431, -133.87],
                        "blade_gains": [1.0, 1.0]}}
-    row = sweep_row(tmp_path, radar, quad, moving_snr_db=22.3392, seed=762767029, elevation_deg=43.3827)
-    assert row["class"] == "drone" and row["range_m"] == pytest.approx(7.81, abs=0.6)
+    clutter = [{"type": "static", "name": f"clutter{i}", "range_m": 32.6174, "azimuth_deg": a, "rcs_m2": rcs}
+               for i, (a, rcs) in enumerate([(1.88457, 0.48524), (-28.5313, 0.589894)])]
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=1.37433, seed=1119031438, clutter=clutter, n_blades=2,
+                    elevation_deg=71.0857)
+    assert row["class"] == "drone" and row["range_m"] == pytest.approx(28.13, abs=0.6)
     assert row["chopping_freq_hz"] is None and row["rotation_rate_hz"] is None
     assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"
     assert "in the range bins either side of the target" in row["notes"]

@@ -18,8 +18,8 @@ from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MI
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import least_squares_line, moving_average, running_median, triangular_average
 from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flank_flash_period, flash_period, on_chirp_grid,
-                                    power_period, ramp_readable, ramp_repeat, ramp_repeats_whole, ramp_train,
-                                    sides_alternate)
+                                    period_of_power, power_period, ramp_readable, ramp_repeat, ramp_repeats_whole,
+                                    ramp_train, sides_alternate, whole_ratio_apart)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, ShortBursts,
@@ -493,14 +493,23 @@ def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=()):
     and the drone's row moved 5.7 m off it). Nor where the flanks repeat with the grid (``mains_hz``,
     :func:`mdpipe.process.mains.repeats_with_grid`): a supply's ripple on the gain swells every static echo in them
     alike (`make bench-impairments`: a K-band sparrow beside clutter read a drone whose flanks recurred every 20 ms
-    under a 1 % ripple, its own echo too faint for the hum to be found there).
+    under a 1 % ripple, its own echo too faint for the hum to be found there), nor where what every range bin holds
+    in common (``flanks().common``) recurs a whole number of times as often or as seldom: another radar's bursts,
+    too few to count the capture crossed, or a ripple at a frequency not searched, light both flanks alike (a W-band
+    sparrow under bursts every 9.7 chirps, 0-7 of them counted, read a drone). A drone whose flashes light every bin
+    recurs there too: it keeps the reading of its own bin.
 
     At a low PRF and a long ramp a blade's flash lands metres off its drone, and the drone's own bin keeps its body
     line and little else (the low-PRF sweep at seed 556: 22 of the 140 drones whose tips land 4-32 bins off and whose
     lines a measurement can see read ``none`` or ``bird`` for no flashes; a K-band quadrotor's flashes spread 21 dB
     over the noise across +-8 m of range, its own bin's body line 15 dB over them)."""
-    period_s = flank_flash_period(flanks(), prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
+    read = flanks()
+    period_s = flank_flash_period(read.power, prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
     if period_s is None or mains.repeats_with_grid(period_s, mains_hz):
+        return turn
+    common = None if read.common is None else period_of_power(np.asarray(read.common, dtype=np.float64),
+                                                               prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
+    if common is not None and whole_ratio_apart(period_s, common.period_s):
         return turn
     note = (f"rotation not estimable: blade flashes recur every {period_s * 1e3:.3g} ms in the range bins either "
             "side of the target, where a long ramp moves its blades' flashes (their Doppler times the ramp), none in "
@@ -1851,8 +1860,9 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         The mains hum the caller took out of ``signal`` already (None: it found none); by default it is looked for
         here (``params.mains_hz``) and taken out of the echo and its ``flash_views`` (:mod:`mdpipe.process.mains`).
     flanks : callable or None
-        Returns the power of the range bins either side of the target, where a long ramp moves its blades' flashes
-        (:func:`mdpipe.process.ranging.flank_powers`), read only where its own echo shows a body line and no flashes
+        Returns the target's :class:`~mdpipe.process.ranging.Flanks`: the power of the range bins either side of it,
+        where a long ramp moves its blades' flashes (:func:`mdpipe.process.ranging.flank_powers`), and the capture's
+        common mode, read only where its own echo shows a body line and no flashes, and no hum was found in it
         (:func:`_flashes_in_flanks`); None: not read (a short ramp, a CW recording, bursts or clipping in the capture).
     """
     dwell_s = len(signal) / prf_hz

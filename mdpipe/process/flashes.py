@@ -297,6 +297,13 @@ def flank_flash_period(flanks, *, prf_hz, min_period_s):
     return min(periods)
 
 
+def whole_ratio_apart(a, b, *, most=MAX_DIVISOR):
+    """Whether periods ``a`` and ``b`` are a whole number of times (up to ``most``) one another, within ``AROUND``."""
+    ratio = max(a, b) / min(a, b)
+    k = round(ratio)
+    return 1 <= k <= most and abs(ratio / k - 1) <= AROUND
+
+
 def _repeats_whole(r, lag, *, floor, sampled, shortest):
     """Whether the autocorrelation ``r`` repeats whole at ``lag`` (see :class:`PowerPeriod`).
 

@@ -81,10 +81,12 @@ def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_b
     workers = min(ranging.WORKERS, -(-n_chirps // rows))
     pass2 = workers * per_thread + 2 * n_chirps * n_bins * 2 * real + 8 * params.n_samples * n_bins + reads
     # one target's flash views at a time (read only where the features ask), and its bounded grid of ramp parts;
-    # its range flanks' bins (complex64) where a long ramp has them read, and their power (float64, both flanks)
+    # its range flanks' bins (complex64) where a long ramp has them read, their power (float64, both flanks), and
+    # their kernels (complex64, the last few bins' kept, each built through complex128)
     flanks = ranging.flank_bins(params, process.range_window)
-    flank_bytes = 0 if flanks is None else 2 * len(ranging.flank_offsets(*flanks)) * 8 + 16
-    views = n_chirps * ((flashes.RAMP_PARTS + 2) * FLASH_VIEW_BYTES + flank_bytes)
+    side = 0 if flanks is None else len(ranging.flank_offsets(*flanks))
+    views = n_chirps * ((flashes.RAMP_PARTS + 2) * FLASH_VIEW_BYTES + (2 * side * 8 + 16 if side else 0))
+    views += 2 * side * params.n_samples * (8 * ranging.FLANK_KERNELS + 16)
     share = max(params.sampled_duration_s / params.chirp_period_s, flashes.RAMP_MIN_SHARE)
     slots = min(n_chirps * flashes.RAMP_PARTS / share, flashes.RAMP_MAX_SLOTS)
     analysis = process.max_targets * n_chirps * ANALYSIS_BYTES_PER_CHIRP + views + int(slots) * RAMP_SLOT_BYTES

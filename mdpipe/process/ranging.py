@@ -30,6 +30,7 @@ carries ``exp(+j 4 pi R / lambda)`` in its positive-frequency bins, so the DFT i
 Arrays are (channel, chirp, sample) in, (chirp, bin) out.
 """
 
+import functools
 import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
@@ -50,7 +51,8 @@ FINE_STEPS = 8        # pass-2 evaluation grid: 1/8 range bin
 STILL_FINE_STEPS = 0.125  # a track moving less than 1/64 bin over a read: one column at its mean position
 WORKERS = min(2, os.cpu_count() or 1)  # threads reading and transforming one capture (see share_cores)
 FLANK_MIN_REACH_BINS = 4.0  # range flanks read where the fastest tips' flashes land this far off or farther ...
-FLANK_MAX_BINS = 64         # ... at most this many bins a side (a bounded memory: 8 B a bin a chirp)
+FLANK_MAX_BINS = 64         # ... at most this many bins a side (a bounded memory: 8 B a bin a chirp) ...
+FLANK_KERNELS = 4           # ... and their kernels at this many of a track's bins kept at once
 MAIN_LOBE_BINS = {"hann": 2.0, "hamming": 2.0, "blackman": 3.0, "boxcar": 1.0}  # each range window's main lobe, +-
 
 
@@ -428,6 +430,16 @@ def flash_views(reader, track_bins, weight, *, segments, side_bins, window="hann
     return FlashViews(views[:, :segments], views[:, segments:])
 
 
+@dataclass(frozen=True)
+class Flanks:
+    """A target's range flanks read (:func:`flank_powers`): ``power`` (n_chirps, 2), and beside it what every range bin
+    of the capture holds in common per chirp (``common``, (n_chirps,), :attr:`mdpipe.process.interference.CommonMode.series`;
+    None: not known), against which flashes local to the target are told."""
+
+    power: np.ndarray
+    common: np.ndarray = None
+
+
 def flank_bins(params, window):
     """(inner, outer): how far (range bins) a target's range flanks reach, past its main lobe (``MAIN_LOBE_BINS`` of
     ``window``) and half a bin of its track, out to where a long ramp moves the flashes of the fastest rotor tips
@@ -471,11 +483,15 @@ def flank_powers(reader, track_bins, weight, *, inner_bins, outer_bins, window="
     columns = np.zeros((reader.n_chirps, len(offsets)), dtype=np.complex64)
     total = np.zeros(n, dtype=np.complex128)
 
-    def kernel(first, stop):
-        bins = int(round(float(np.mean(track_bins[first:stop])) / zero_pad)) + offsets
-        k = taper * np.exp(2j * np.pi * np.outer(bins, m) / n)  # conjugated, as dft_matrix: the weights' convention
+    @functools.lru_cache(maxsize=FLANK_KERNELS)
+    def at(centre):
+        bins = centre + offsets
+        k = (taper * np.exp(2j * np.pi * np.outer(bins, m) / n)).astype(np.complex64)  # conjugated, as dft_matrix
         k[(bins < 1) | (bins > n // 2 - 1)] = 0.0
-        return k.astype(np.complex64)
+        return k
+
+    def kernel(first, stop):  # at the read's mean track, rounded to a bin: the reads' bins come in order, a few kept
+        return at(int(round(float(np.mean(track_bins[first:stop])) / zero_pad)))
 
     for first, block in reader.iter_chunks(chunk_chirps=chunk_chirps):
         real_imag = np.matmul(parts_of_weight, block)
