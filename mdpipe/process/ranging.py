@@ -433,8 +433,9 @@ def flash_views(reader, track_bins, weight, *, segments, side_bins, window="hann
 @dataclass(frozen=True)
 class Flanks:
     """A target's range flanks read (:func:`flank_powers`): ``power`` (n_chirps, 2), and beside it what every range bin
-    of the capture holds in common per chirp (``common``, (n_chirps,), :attr:`mdpipe.process.interference.CommonMode.series`;
-    None: not known), against which flashes local to the target are told."""
+    of the capture holds in common per chirp (``common``, (n_chirps,),
+    :attr:`mdpipe.process.interference.CommonMode.series`; None: not known), against which flashes local to the
+    target are told."""
 
     power: np.ndarray
     common: np.ndarray = None
