@@ -355,6 +355,14 @@ def slow_time(reader, tracks, weights, *, window="hann", zero_pad=1, chunk_chirp
     return out
 
 
+def centred_rows(taper, bins, *, zero_pad=1):
+    """Rows (len(bins), N) of the ``taper``-windowed, conjugated DFT at (fractional) ``bins`` of a ``zero_pad`` times
+    padded grid, each sample's phase referred to the middle one (:func:`dft_matrix`'s convention, complex)."""
+    n = len(taper)
+    centred = np.arange(n) - (n - 1) / 2
+    return taper * np.exp(2j * np.pi * np.atleast_1d(bins)[:, None] / (zero_pad * n) * centred)
+
+
 @dataclass(frozen=True)
 class FlashViews:
     """A target's slow time seen two more ways (:func:`flash_views`): ``parts`` (n_chirps, S), each of S equal
@@ -393,7 +401,7 @@ def flash_views(reader, track_bins, weight, *, segments, side_bins, window="hann
     total = np.zeros(n, dtype=np.complex128)
 
     def side(bin_):
-        return whole * np.exp(2j * np.pi * bin_ / (zero_pad * n) * (m - (n - 1) / 2))
+        return centred_rows(whole, bin_, zero_pad=zero_pad)[0]
 
     def kernels(first, stop):
         """The parts' kernels at the read's mean track, and each side's at its nearest and farthest track with
@@ -475,7 +483,6 @@ def flank_powers(reader, track_bins, weight, *, inner_bins, outer_bins, window="
     params = reader.params
     n = params.n_samples
     taper = range_window(window, n)
-    m = np.arange(n) - (n - 1) / 2
     offsets = flank_offsets(inner_bins, outer_bins)
     offsets = np.concatenate([-offsets[::-1], offsets])  # the nearer flank, then the farther
     near = len(offsets) // 2
@@ -487,7 +494,7 @@ def flank_powers(reader, track_bins, weight, *, inner_bins, outer_bins, window="
     @functools.lru_cache(maxsize=FLANK_KERNELS)
     def at(centre):
         bins = centre + offsets
-        k = (taper * np.exp(2j * np.pi * np.outer(bins, m) / n)).astype(np.complex64)  # conjugated, as dft_matrix
+        k = centred_rows(taper, bins).astype(np.complex64)
         k[(bins < 1) | (bins > n // 2 - 1)] = 0.0
         return k
 
