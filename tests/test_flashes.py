@@ -259,6 +259,150 @@ def test_ramp_parts_of_noise_tell_nothing():
     assert flashes.ramp_repeats_whole(train, 37.5, shortest_chirps=2.7) is None
 
 
+def test_ramp_parts_of_noise_swelling_slowly_tell_nothing():
+    """Noise whose power swells slowly (a log-normal envelope smoother than 400 chirps, at 33.9 kHz: within the 50 ms
+    the parts' trend is taken over) lifts the parts' correlation to a floor of 0.2-0.25 at every lag read, a few
+    thousandths about it. Read against 0 some period is whole; over that floor (``over_floor``, as a reading is
+    overruled only so) none is. Flashes every 15.45 chirps on the same swell stand over it: whole."""
+    prf_hz, n = 33905.0, 20000
+    rng = np.random.default_rng(7)
+    k = np.fft.rfftfreq(n)
+    swell = np.fft.irfft((rng.standard_normal(len(k)) + 1j * rng.standard_normal(len(k))) * (k < 1 / 400), n)
+    parts = _ramp_parts(37.5, amplitude=0.0, n_chirps=n) * np.exp(0.35 * swell / np.std(swell))[:, None]
+    train = flashes.ramp_train(parts, ramp_share=RAMP_SHARE, prf_hz=prf_hz)
+    assert np.all(train.correlation[[50, 150, 375]] > 0.2)
+    periods = (12.3, 18.6, 27.9, 37.5)
+    assert True in [flashes.ramp_repeats_whole(train, p, shortest_chirps=prf_hz / 3000) for p in periods]
+    for period_chirps in periods:
+        assert flashes.ramp_repeats_whole(train, period_chirps, shortest_chirps=prf_hz / 3000, over_floor=True) is None
+    flashing = _ramp_parts(15.45, amplitude=6.0, n_chirps=n) * np.exp(0.35 * swell / np.std(swell))[:, None]
+    train = flashes.ramp_train(flashing, ramp_share=RAMP_SHARE, prf_hz=prf_hz)  # flashes on that swell still stand
+    assert flashes.ramp_repeats_whole(train, 15.45, shortest_chirps=prf_hz / 3000, over_floor=True) is True
+
+
+def _read_with_ramp(chopping_hz, *, n_blades, source, period_chirps, status="ok", prf_hz=PRF_HZ, rates_hz=None,
+                    parts=None):
+    """A rotation read at ``chopping_hz`` (rotors at ``rates_hz``, else one at the chopping over ``n_blades``;
+    ``source`` of the count), put by :func:`mdpipe.process.features._flashes_between` to the ramp's ``parts`` (else
+    a train of flashes every ``period_chirps``, wandering 0.3 %; 6000 chirps)."""
+    from mdpipe.process.features import Measured, Rotation, _flashes_between
+    parts = _ramp_parts(period_chirps, wander=0.003) if parts is None else parts
+    train = flashes.ramp_train(parts, ramp_share=RAMP_SHARE, prf_hz=prf_hz)
+    rates_hz = (chopping_hz / n_blades,) if rates_hz is None else tuple(rates_hz)
+    turn = Rotation(Measured(chopping_hz, status), Measured(float(np.median(rates_hz)), status), rates_hz, n_blades,
+                    source)
+    return turn, _flashes_between(turn, lambda: train, prf_hz=prf_hz)
+
+
+@pytest.mark.parametrize("k, source", [(3, "given"), (5, "given"), (4, "measured")])
+def test_a_chopping_read_at_a_kth_of_the_flashes_the_ramp_resolves_is_taken_at_k_times(k, source):
+    """Flashes every 15.45 chirps (a 2-blade rotor chopping at 517.8 Hz at a PRF of 8 kHz), read at a k-th of that
+    (flash times or a folded comb catching every k-th passage: where the sampling comes round again): the ramp's
+    parts repeat whole at 15.45 chirps and at each of its multiples up to the reading's period. The chopping is k
+    times the reading, the rate with it, for N = 2 given or measured."""
+    turn, read = _read_with_ramp(PRF_HZ / 15.45 / k, n_blades=2, source=source, period_chirps=15.45)
+    assert read.chopping.status == read.rate.status == "ok"
+    assert read.chopping.value == pytest.approx(k * turn.chopping.value)
+    assert read.chopping.value == pytest.approx(PRF_HZ / 15.45, rel=0.01)
+    assert read.rate.value == pytest.approx(read.chopping.value / 2)
+    assert read.rotor_rates_hz == pytest.approx([k * r for r in turn.rotor_rates_hz])
+    assert (read.n_blades, read.n_blades_source) == (2, source)
+    assert f"{k} times per period of the chopping read" in read.chopping.note
+
+
+@pytest.mark.parametrize("rates_apart", [0.0, 0.015])
+def test_half_the_flashes_read_keep_the_reading_ambiguous(rates_apart):
+    """Flashes every 15.45 chirps read at half (30.9 chirps). Two rotors at one rate half a chopping period apart
+    repeat there too, and one rate in a comb does not rule them out (two of four locked, beside others): the reading
+    is kept as `ambiguous_period` (its value, twice it as likely; no rate), rotors resolved 1.5 % apart or not."""
+    one = PRF_HZ / 30.9 / 2
+    turn, read = _read_with_ramp(PRF_HZ / 30.9, n_blades=2, source="given", period_chirps=15.45,
+                                 rates_hz=((1 - rates_apart / 2) * one, (1 + rates_apart / 2) * one))
+    assert read.chopping.value == turn.chopping.value and read.chopping.status == "ambiguous_period"
+    assert read.rate.value is None and read.rate.status == "ambiguous_period" and read.rotor_rates_hz == ()
+    assert "258.9 Hz or twice it" in read.chopping.note and "rotors at one rate" in read.chopping.note
+
+
+@pytest.mark.parametrize("offset_chirps, kept_ambiguous", [(5.9, False), (7.2, False), (9.8, False), (15.0, True)])
+def test_two_rotors_at_one_rate_a_fraction_apart_do_not_overrule_a_reading(offset_chirps, kept_ambiguous):
+    """Two 2-blade rotors at one rate flashing every 30.9 chirps, the second ``offset_chirps`` after the first,
+    read right (258.9 Hz, one rotor resolved). The offset repeats near 30.9 / k (5.9 and 7.2: k = 5, 9.8: k = 3, 15.0:
+    k = 2). At k = 5 it does not repeat at the multiples of 30.9 / 5, and at k = 3 its repeat at 30.9 less it, within
+    3 % of 2 x 30.9 / 3, holds 0.59 of the repeat at 30.9 (flashes every 10.3 chirps would repeat there as at 30.9):
+    the reading stands. At k = 2 nothing tells: it is kept as `ambiguous_period` (its value, no rate)."""
+    parts = (_ramp_parts(30.9, wander=0.003, seed=3) +
+             _ramp_parts(30.9, phase_chirps=0.3 + offset_chirps, wander=0.003, seed=4))
+    turn, read = _read_with_ramp(PRF_HZ / 30.9, n_blades=2, source="given", period_chirps=30.9, parts=parts)
+    assert (read is turn) is not kept_ambiguous
+    assert read.chopping.value == turn.chopping.value
+    assert read.chopping.status == ("ambiguous_period" if kept_ambiguous else "ok")
+
+
+def test_an_odd_counts_chopping_read_at_a_third_is_taken_at_three_times_it():
+    """Three blades flash twice per chopping period: flashes every 15.45 chirps are a chopping of 258.9 Hz. Read at a
+    third of that (a chopping period of 92.7 chirps, 6 flash periods), the chopping is 3 times the reading. Read at
+    half (4 flash periods: two rotors at one rate a quarter of the chopping period apart flash so too), the reading is
+    kept as `ambiguous_period`."""
+    turn, read = _read_with_ramp(PRF_HZ / 15.45 / 6, n_blades=3, source="given", period_chirps=15.45)
+    assert read.chopping.status == "ok" and read.chopping.value == pytest.approx(3 * turn.chopping.value)
+    assert read.chopping.value == pytest.approx(PRF_HZ / 15.45 / 2, rel=0.01)
+    assert read.rate.value == pytest.approx(read.chopping.value / 3)
+    assert "an odd count flashes twice per chopping period" in read.chopping.note
+    turn, read = _read_with_ramp(PRF_HZ / 15.45 / 4, n_blades=3, source="given", period_chirps=15.45)
+    assert read.chopping.value == turn.chopping.value and read.chopping.status == "ambiguous_period"
+
+
+def test_an_odd_count_reads_no_odd_multiple_of_its_flashes():
+    """Flashes every 15.45 chirps under a chopping period of 46.35 chirps (3 flash periods): with N = 2 the chopping is
+    3 times the reading. Three blades flash twice per chopping period, so a reading at 1/m of their chopping holds 2m
+    of their flash periods, never 3: with N = 3 the reading stands."""
+    turn, read = _read_with_ramp(PRF_HZ / 15.45 / 3, n_blades=2, source="given", period_chirps=15.45)
+    assert read.chopping.value == pytest.approx(3 * turn.chopping.value)
+    turn, read = _read_with_ramp(PRF_HZ / 15.45 / 3, n_blades=3, source="given", period_chirps=15.45)
+    assert read is turn
+
+
+def test_a_chopping_the_ramp_confirms_stands():
+    """Read at the flashes' own rate, nothing shorter repeats: the rotation stands as read (the same object)."""
+    turn, read = _read_with_ramp(PRF_HZ / 15.45, n_blades=2, source="given", period_chirps=15.45)
+    assert read is turn
+
+
+def test_flashes_within_two_chirps_do_not_overrule_a_reading():
+    """At a PRF of 4 kHz (the fastest chopping searched, 3 kHz, flashes every 1.33 chirps), flashes every 1.7 chirps
+    read at half their rate (3.4 chirps): the ramp's parts repeat whole at 1.7,
+    but a period under ``RAMP_MIN_PERIOD_CHIRPS`` is not read there (each part is differenced along the chirps, so
+    a flash shows in it twice, a chirp apart): the reading stands."""
+    from mdpipe.process.features import _settled_in_ramp
+    prf_hz = 4000.0
+    train = flashes.ramp_train(_ramp_parts(1.7, wander=0.003), ramp_share=RAMP_SHARE, prf_hz=prf_hz)
+    assert _settled_in_ramp(lambda: train, 3.4, [2], prf_hz=prf_hz) == pytest.approx(1.7)  # read, were it asked
+    turn, read = _read_with_ramp(prf_hz / 3.4, n_blades=2, source="given", period_chirps=1.7, prf_hz=prf_hz)
+    assert read is turn
+
+
+def test_a_chopping_at_a_fraction_of_the_flashes_with_the_count_assumed_is_kept_ambiguous():
+    """The blade count assumed: its parity says whether the flash rate is the chopping or twice it. Flashes every
+    15.45 chirps under a reading at a fourth of them keep the reading as `ambiguous_period` (4 times it, or twice it),
+    the rate withheld; at half of them (an odd count's flashes) the reading stands."""
+    turn, read = _read_with_ramp(PRF_HZ / 15.45 / 4, n_blades=2, source="assumed", period_chirps=15.45,
+                                 status="assumed_blades")
+    assert read.chopping.value == turn.chopping.value and read.chopping.status == "ambiguous_period"
+    assert read.rate.value is None and read.rate.status == "ambiguous_period"
+    assert "the blade count's parity" in read.chopping.note and "give --blades" in read.chopping.note
+    assert "4 times it (an even blade count) or 2 times (an odd one)" in read.chopping.note
+    turn, read = _read_with_ramp(PRF_HZ / 15.45 / 2, n_blades=2, source="assumed", period_chirps=15.45,
+                                 status="assumed_blades")
+    assert read is turn
+
+
+def test_a_chopping_kept_but_not_stood_behind_is_left_as_it_was():
+    """A chopping kept with its value as ``ambiguous_period`` (its double as likely) is not read again."""
+    turn, read = _read_with_ramp(PRF_HZ / 15.45 / 5, n_blades=2, source="given", period_chirps=15.45,
+                                 status="ambiguous_period")
+    assert read is turn
+
+
 def _sides(flash_period, *, alternate, both=False, n_chirps=8000, amplitude=4.0, upper=1.0, seed=5):
     """Two range sides' slow time: unit complex noise each, and flashes (one chirp, random phase) every
     ``flash_period`` chirps, by turns on the lower and the upper side (``alternate``: an odd N's approaching and

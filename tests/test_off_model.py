@@ -1951,7 +1951,9 @@ def test_a_comb_the_prf_folds_tips_onto_at_its_odd_orders_gives_no_rate_where_th
     112.7-114.8 rev/s, 10.6 cm blades (tips at 76 m/s), seen at 14.6 deg at a PRF of 4.0 kHz: a span of +-30.5 m/s.
     Its tips folded once, too faint to light the span's ends, and the PRF lay 0.1 bin from 35 times 114.6 Hz: the
     folded chopping lines sat on the odd orders of a comb at half the chopping, read `ok` with N = 2 given (57.3
-    rev/s). Either chopping gives that comb: the comb's spacing kept as ambiguous, no rate."""
+    rev/s). Either chopping gives that comb (``features._folded_unseen``), and the echo resolved within the ramp
+    repeats whole at half its period (flashes every 17.5 chirps, or two of its rotors, at one rate, 114.845 rev/s,
+    half a period apart): the comb's spacing kept as ambiguous, no rate."""
     radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=0.000199429, chirp_period_s=0.000249286,
                  sample_rate_hz=320916.2161170141, n_samples=64, n_chirps=2048, n_channels=4)
     quad = {"name": "quadrotor_xband", "type": "multirotor", "elevation_deg": 14.5529, "body_rcs_m2": 0.00173206,
@@ -1968,7 +1970,7 @@ def test_a_comb_the_prf_folds_tips_onto_at_its_odd_orders_gives_no_rate_where_th
     assert row["chopping_freq_hz"] == pytest.approx(114.6, rel=0.01)  # half the truth, 228.5 Hz: not stood behind
     assert row["chopping_freq_hz_status"] == "ambiguous_period"
     assert row["n_blades"] == 2 and row["n_blades_source"] == "given"
-    assert "tips folded unseen would put a chopping of 229.2 Hz" in row["notes"]
+    assert "chopping frequency 114.6 Hz or twice it" in row["notes"]  # the ramp's parts: flashes every 17.5 chirps
 
 
 @pytest.mark.parametrize("aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, held", [
@@ -2046,3 +2048,110 @@ def test_a_drone_read_as_wings_is_read_by_its_flanks_flashes(tmp_path):
     assert row["chopping_freq_hz_status"] == "ambiguous_period" and row["rotation_rate_hz"] is None
     assert row["wing_stroke_swing"] is None and row["wing_stroke_swing_status"] == "not_applicable"
     assert row["wingbeat_freq_hz"] is None
+
+
+def _static(*clutter):
+    return [{"type": "static", "name": f"clutter{i}", "range_m": r, "azimuth_deg": a, "rcs_m2": rcs}
+            for i, (r, a, rcs) in enumerate(clutter)]
+
+
+def test_flash_times_caught_every_fifth_passage_are_read_at_the_flashes_the_ramp_resolves(tmp_path):
+    """Scene 70 of the low-PRF sweep drawn at seed 557: a 77 GHz quadrotor of tapered 2-blade rotors in two pairs,
+    131.2 and 125.9 rev/s (choppings 251.2-262.4 Hz), seen from 74 deg at a PRF of 4.04 kHz. One pair flashes every
+    15.41 chirps: the sampling comes round again after 5 passages (77.0 chirps), and the whole ramps' flash times
+    read 52.3 Hz, `ok` (a fifth). Resolved within the ramp, every passage in a ramp shows: the parts repeat whole
+    every 15.46 chirps; the chopping is read there, within the rotors' choppings, the rate for the 2 blades given."""
+    radar = dict(f_start_hz=76.5e9, f_stop_hz=76.6e9, ramp_up_s=0.000197908, chirp_period_s=0.000247385,
+                 sample_rate_hz=646765.1642581403, n_samples=128, n_chirps=2633, n_channels=2)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 74.344, "body_rcs_m2": 0.00668656,
+            "motion": {"position_m": [5.49991, 1.13398, 17.0851], "velocity_mps": [0.0, 0.0, 0.0],
+                       "sway_amplitude_m": [0.0837253, 0.156086, 0.077903], "sway_period_s": 1.18337},
+            "rotors": {"count": 4, "blade_profile": "tapered", "tip_reflectivity": 0.501552, "root_m": 0.01,
+                       "phase_deg": [260.346, 100.391, 340.946, 101.818], "blade_rcs_m2": 0.000853071,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 0.609272,
+                       "tilt_deg": [3.30891, 2.84625, -2.97593, 0.507981], "blades": 2, "arm_m": 0.110181,
+                       "blade_length_m": 0.166696, "rev_per_s": [131.178, -126.264, 125.598, -131.203],
+                       "blade_gains": [1.0, 1.0]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=6.37135, seed=1164783902,
+                    clutter=_static((30.2091, 34.9693, 0.469919), (79.2216, -30.1771, 0.825702)), n_blades=2)
+    assert row["class"] == "drone" and row["aliased"]
+    assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ok"
+    assert 2 * 125.598 <= row["chopping_freq_hz"] <= 2 * 131.203
+    assert row["rotation_rate_hz"] == pytest.approx(row["chopping_freq_hz"] / 2)
+    assert "the chopping is 5 times the 52.31 Hz read (2 blades given)" in row["notes"]
+
+
+def test_a_comb_at_half_the_chopping_seen_from_above_is_kept_ambiguous_by_the_flashes_the_ramp_resolves(tmp_path):
+    """Scene 142 of the low-PRF sweep drawn at seed 557: a 94 GHz quadrotor of point blades at 111.4-111.7 rev/s
+    (choppings 222.8-223.3 Hz) seen from 87.6 deg, PRF 1.68 kHz: its tips (98 m/s; 4-10 m/s radial, the discs tilted
+    2.3-3.3 deg) fold beyond the span of +-1.3 m/s unseen, and the band read unaliased. Comb and period read 112 Hz,
+    `ok` with N = 2 given. Resolved within the ramp, the flashes repeat whole every 7.47 chirps: 224 Hz."""
+    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=0.000477111, chirp_period_s=0.000596388,
+                 sample_rate_hz=134140.69276122327, n_samples=64, n_chirps=2048, n_channels=4)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 87.6455, "body_rcs_m2": 0.00449334,
+            "body_scatterers": [{"offset_m": [0.05, 0.0, -0.06], "rcs_m2": 0.00172984}],
+            "motion": {"position_m": [10.175, 2.8399, 11.3109], "velocity_mps": [0.0745722, -0.358771, 0.0],
+                       "sway_amplitude_m": [0.0311832, 0.00287094, 0.0217944], "sway_period_s": 1.89001},
+            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 32, "root_m": 0.01,
+                       "phase_deg": [161.579, 125.167, 30.0463, 111.572], "blade_rcs_m2": 0.00499634,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 2.88144,
+                       "tilt_deg": [-3.3033, -2.30531, -2.57003, -3.19654], "blades": 2, "arm_m": 0.220544,
+                       "blade_length_m": 0.140385, "rev_per_s": [111.437, -111.666, 111.39, -111.66],
+                       "blade_gains": [1.0, 1.0]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=25.0638, seed=539715655,
+                    clutter=_static((16.3087, -14.0983, 0.95189)), n_blades=2, elevation_deg=87.6455)
+    assert row["class"] == "drone" and not row["aliased"]
+    assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"
+    assert row["chopping_freq_hz"] == pytest.approx(223.08 / 2, rel=0.01) and row["rotation_rate_hz"] is None
+    assert "chopping frequency 112.2 Hz or twice it" in row["notes"]
+
+
+def test_an_odd_counts_flash_times_at_the_chopping_are_kept_ambiguous_by_the_flashes_the_ramp_resolves(tmp_path):
+    """Scene 59 of the low-PRF sweep drawn at seed 557: a K-band quadrotor of 3-blade rotors at 72.0-73.9 rev/s
+    (choppings 215.9-221.7 Hz; 3 blades flash twice per chopping period, every 9.0-9.3 chirps at a PRF of 4.01 kHz),
+    seen edge-on. Its flash times read every 18.2 chirps (every second passage caught), taken for the flashes of the
+    3 blades given: a chopping of 110 Hz, `ok`. Resolved within the ramp the flashes repeat whole every 9.1 chirps,
+    four times per period of that chopping: 220 Hz, or two rotors at one rate a quarter of its period apart (one
+    rate read): the reading kept as ambiguous, no rate."""
+    radar = dict(f_start_hz=24.0e9, f_stop_hz=24.25e9, ramp_up_s=0.000199695, chirp_period_s=0.000249619,
+                 sample_rate_hz=640977.4913142542, n_samples=128, n_chirps=3479, n_channels=1)
+    quad = {"name": "three_blade_quad", "type": "multirotor", "elevation_deg": 0.879069, "body_rcs_m2": 0.0144857,
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [0.822714, 178.487, 47.4995, 173.422], "blade_rcs_m2": 0.000521427,
+                       "rate_wander_fraction": 0.0113175, "rate_wander_period_s": 1.61541,
+                       "tilt_deg": [1.63549, 4.92654, -1.60364, 0.880742], "blades": 3, "arm_m": 0.283659,
+                       "blade_length_m": 0.231163, "rev_per_s": [71.9657, -73.9024, 72.6321, -72.3469],
+                       "blade_gains": [1.0, 1.0, 1.0]},
+            "motion": {"position_m": [14.1602, -0.300476, 12.1714], "velocity_mps": [0.0, 0.0, 0.0]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=-2.28332, seed=734933640,
+                    clutter=_static((14.3585, -34.1103, 0.205666), (32.6174, 37.7059, 9.81722)), n_blades=3,
+                    elevation_deg=0.879069)
+    assert row["class"] == "drone" and row["aliased"]
+    assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"
+    assert row["chopping_freq_hz"] == pytest.approx(110.0, rel=0.01) and row["rotation_rate_hz"] is None
+    assert "4 times per period of the chopping read" in row["notes"]
+    assert "chopping frequency 110 Hz or twice it" in row["notes"]
+
+
+def test_a_right_comb_stands_where_the_ramps_parts_sit_on_a_floor(tmp_path):
+    """Scene 147 of the default sweep: a K-band quadrotor of tapered blades (one of each pair 1.66 times the other) at
+    136.5-139.7 rev/s, 56 m out and flying 9.4 m/s, PRF 10.4 kHz: its comb reads the chopping, 276.0 Hz for 276.2. The
+    echo's parts within the ramp correlate about 0.1 at every lag read (0.08-0.14 at 1-2.4 chirps); read against 0
+    they repeated whole at a sixth of the chopping period, and the chopping was withheld. Over that floor no shorter
+    period stands: the comb's reading stays."""
+    radar = dict(f_start_hz=24.0e9, f_stop_hz=24.1e9, ramp_up_s=7.69786e-05, chirp_period_s=9.62232e-05,
+                 sample_rate_hz=1662799.7927735762, n_samples=128, n_chirps=7347, n_channels=2)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 71.2595, "body_rcs_m2": 0.0525042,
+            "body_scatterers": [{"offset_m": [0.05, 0.0, -0.06], "rcs_m2": 0.00585414}],
+            "motion": {"position_m": [54.5171, 12.8173, 0.879684], "velocity_mps": [1.41187, -9.26334, 0.0],
+                       "sway_amplitude_m": [0.138359, 0.197771, 0.0928448], "sway_period_s": 4.76995},
+            "rotors": {"count": 4, "blade_profile": "tapered", "tip_reflectivity": 0.473088, "root_m": 0.01,
+                       "phase_deg": [203.076, 125.211, 220.045, 263.132], "blade_rcs_m2": 0.00326925,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 0.638739,
+                       "tilt_deg": [-3.10126, -0.261753, -3.02318, 1.71292], "blades": 2, "arm_m": 0.208917,
+                       "blade_length_m": 0.193511, "rev_per_s": [136.499, -138.191, 139.664, -138.017],
+                       "blade_gains": [1.0, 1.65783]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=-2.21235, seed=1113947342, elevation_deg=71.2595)
+    assert row["class"] == "drone"
+    assert row["chopping_freq_hz_status"] == "ok" and row["chopping_freq_hz"] == pytest.approx(276.19, rel=0.01)
+    assert "repeats whole every" not in row["notes"]

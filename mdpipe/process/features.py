@@ -17,9 +17,10 @@ from mdpipe.process import combs, doppler, mains, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import least_squares_line, moving_average, running_median, triangular_average
-from mdpipe.process.flashes import (RAMP_SETTLE_SHARE, PowerPeriod, flank_flash_period, flash_period, on_chirp_grid,
-                                    period_of_power, power_period, ramp_readable, ramp_repeat, ramp_repeats_whole,
-                                    ramp_train, sides_alternate, whole_ratio_apart)
+from mdpipe.process.flashes import (RAMP_MIN_PERIOD_CHIRPS, RAMP_SETTLE_SHARE, PowerPeriod, flank_flash_period,
+                                    flash_period, on_chirp_grid, period_of_power, power_period, ramp_readable,
+                                    ramp_floor, ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate,
+                                    whole_ratio_apart)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, ShortBursts,
@@ -481,6 +482,71 @@ def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_
             f"{2 * chopping_hz:.4g} Hz on the odd orders of its comb (another PRF tells which)")
     return replace(turn, chopping=Measured(chopping_hz, "ambiguous_period", note),
                    rate=withheld("ambiguous_period", note), rotor_rates_hz=())
+
+
+def _flashes_between(turn, ramp, *, prf_hz):
+    """``turn`` (a :class:`Rotation`), read again where the echo resolved within the ramp (``ramp()``, a
+    :class:`~mdpipe.process.flashes.RampTrain`, or None: not read) shows flashes k times as often as its chopping
+    allows: equal blades flash once per chopping period P (an even N) or twice (an odd N), so the parts repeating whole
+    (:func:`_settled_in_ramp`) at P / k, k up to ``MAX_RAMP_DIVISOR`` and P / k ``flashes.RAMP_MIN_PERIOD_CHIRPS`` or
+    longer, with k a multiple of the flashes per chopping period and at least twice it (the count given or measured;
+    k of 3 or more where it may be odd), standing over the floor the parts' slow swings may lift every lag to
+    (:func:`~mdpipe.process.flashes.ramp_floor`), and, over that floor, at every multiple of P / k with
+    ``RAMP_SETTLE_SHARE`` of their repeat at P: an offset d between two trains repeats at d and P - d only (a
+    hexarotor's parts repeated at P / 4 with 0.87 of it, at P / 2 with 0.33), and point blades' grating flashes
+    within one blade's likewise (a quadrotor of 8-point blades read right at 157.6 Hz: at P / 4 with 1.26 of it, at
+    P / 2 with 0.59).
+
+    Flashes shorter than a chirp, sampled every 1 / PRF, are caught whole at some passages only; their flash times
+    and folded comb repeat where the sampling comes round again, after k passages, while the ramp's parts show every
+    passage that falls within a ramp. Quadrotors of 2 blades at 2.7-4 kHz PRFs, rotors 0.2-4.6 % apart, were read
+    `ok` at a fourth or a fifth of their chopping from flash times or a comb, the parts whole at their flash period.
+
+    With the blade count given or measured the chopping is taken at k / (flashes per chopping period) times the
+    reading, the rates with it. It is kept as ``ambiguous_period`` (its value; the rate withheld) where the count is
+    assumed (its parity says whether the flash rate is the chopping or twice it), and where k is twice the flashes
+    per chopping period: rotors at one rate half a flash period apart repeat so too, two of them locked being the
+    likeliest, and one rate in a comb does not rule it out (a 94 GHz quadrotor at 223 Hz and a K-band 3-blade one at
+    218 Hz, read at half, were so)."""
+    chopping_hz = turn.chopping.value
+    if chopping_hz is None or turn.chopping.status not in (OK, "assumed_blades") or ramp is None or ramp() is None:
+        return turn
+    known = turn.n_blades is not None and turn.n_blades_source in ("given", "measured")
+    per_chop = rotor.flashes_per_revolution(turn.n_blades) // turn.n_blades if known else 1
+    period_chirps = prf_hz / chopping_hz
+    divisors = [k for k in range(2 * per_chop if known else 3, MAX_RAMP_DIVISOR + 1, per_chop)
+                if period_chirps / k >= RAMP_MIN_PERIOD_CHIRPS]
+    settled = _settled_in_ramp(ramp, period_chirps, divisors, prf_hz=prf_hz)
+    if settled is None:
+        return turn
+    k = int(round(period_chirps / settled))
+    floor = ramp_floor(ramp(), period_chirps)
+    reference = ramp_repeat(ramp(), period_chirps) - floor
+    if not (reference > 0 and ramp_repeats_whole(ramp(), settled, shortest_chirps=prf_hz / combs.MAX_CHOP_HZ,
+                                                 over_floor=True)):
+        return turn  # on the floor the parts' slow swings lift
+    if any(not ramp_repeat(ramp(), j * settled) - floor >= RAMP_SETTLE_SHARE * reference for j in range(2, k)):
+        return turn  # not at every multiple: an offset between rotors' trains or flashes within a blade's
+    found = (f"the echo resolved within the ramp repeats whole every {settled:.3g} chirps, {k} times per period of "
+             f"the chopping read: flashes shorter than a chirp caught at some passages only")
+    if not known or k == 2 * per_chop:
+        if not known:
+            times = f"{k} times it (an even blade count) or {k / 2:g} times (an odd one)"
+            why = ("the blade count's parity, which tells whether their rate is the chopping or twice it, is not "
+                   "known (give --blades)")
+        else:
+            times, why = "twice it", "or rotors at one rate half a flash period apart"
+        note = f"chopping frequency {chopping_hz:.4g} Hz or {times}, and rotation not estimable: {found}, {why}"
+        return replace(turn, chopping=Measured(chopping_hz, "ambiguous_period", note),
+                       rate=withheld("ambiguous_period", note), rotor_rates_hz=())
+    factor = k / per_chop
+    odd = "; an odd count flashes twice per chopping period" if per_chop == 2 else ""
+    note = (f"{found}; the chopping is {factor:g} times the {chopping_hz:.4g} Hz read ({turn.n_blades} blades "
+            f"{turn.n_blades_source}{odd})")
+    chopping_hz *= factor
+    rate_hz = float(rotor.rotation_rate_from_chopping_hz(chopping_hz, n_blades=turn.n_blades))
+    return replace(turn, chopping=Measured(chopping_hz, OK, note), rate=Measured(rate_hz, OK, note),
+                   rotor_rates_hz=tuple(factor * r for r in turn.rotor_rates_hz))
 
 
 def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=()):
@@ -1834,7 +1900,7 @@ def _columns(primary, measured, derived=None):
 
 
 def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=None, flash_views=None,
-                   ramp_share=1.0, ranged=True, hum=mains.SEARCH, flanks=None):
+                   ramp_share=1.0, ranged=True, hum=mains.SEARCH, flanks=None, reread=True):
     """Measure every feature of one target's complex slow-time ``signal`` (channels combined).
 
     Parameters
@@ -1854,8 +1920,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     flash_views : callable or None
         Returns the target's :class:`~mdpipe.process.ranging.FlashViews` (its slow time in parts of every ramp and
         at its range sides; :func:`mdpipe.process.pipeline.flash_views`), called only where a path reads the echo's
-        power period or leaves flash times ambiguous; ``ramp_share``: the sampled part of the ramp's share of the
-        chirp period.
+        power period or leaves flash times ambiguous, or a chopping is read (:func:`_flashes_between`); ``ramp_share``:
+        the sampled part of the ramp's share of the chirp period.
     hum : Hum or None
         The mains hum the caller took out of ``signal`` already (None: it found none); by default it is looked for
         here (``params.mains_hz``) and taken out of the echo and its ``flash_views`` (:mod:`mdpipe.process.mains`).
@@ -1864,6 +1930,10 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         where a long ramp moves its blades' flashes (:func:`mdpipe.process.ranging.flank_powers`), and the capture's
         common mode, read only where its own echo shows a body line and no flashes, and no hum was found in it
         (:func:`_flashes_in_flanks`); None: not read (a short ramp, a CW recording, bursts or clipping in the capture).
+    reread : bool
+        Whether a chopping read is read again on the ramp's parts (:func:`_flashes_between`): not where bursts of
+        another radar cross the capture or samples clip (a burst falls in some parts of some ramps, again and again:
+        values moved under bursts every 9.71 chirps in `make bench-impairments`).
     """
     dwell_s = len(signal) / prf_hz
     s = np.asarray(signal, dtype=np.complex128)
@@ -1899,14 +1969,19 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         turn = _undersampled(turn, hidden)
     if hum is not None:
         turn = _on_hum(turn, hum, body_hz=body_doppler_hz, prf_hz=prf_hz)
+    read = turn
+    if reread:
+        turn = _flashes_between(turn, ramp, prf_hz=prf_hz)
+
     def lengths(read):  # the tip Doppler, blade length and flash edges of a rotation read
         return blade_length(body.demodulated, rate=read.rate, chopping_hz=read.chopping.value, aliased=band.aliased,
                             half_width_hz=band.half_width_hz, prf_hz=prf_hz, wavelength_m=wavelength_m,
                             noise_power=noise_power, params=params, n_blades=read.n_blades)
 
     tip, length, edges = lengths(turn)
-    folded = _folded_unseen(turn, aliased=band.aliased, tips_seen=edges is not None, prf_hz=prf_hz,
-                            wavelength_m=wavelength_m, elevation_deg=params.elevation_deg, dwell_s=dwell_s)
+    folded = turn if turn is not read else _folded_unseen(  # (the ramp's parts have read it: no shorter flash period)
+        turn, aliased=band.aliased, tips_seen=edges is not None, prf_hz=prf_hz, wavelength_m=wavelength_m,
+        elevation_deg=params.elevation_deg, dwell_s=dwell_s)
     if folded is not turn:
         turn = folded
         tip, length, edges = lengths(turn)  # (no rate: none)

@@ -77,6 +77,10 @@ RAMP_MIN_SHARE = 0.5        # a ramp sampled over less of the chirp is not read 
 RAMP_SETTLE_SHARE = 0.75    # a period / k taken for a period only where it repeats with this share of the period's
                             # (flashes resolved within the ramp repeat alike at their period and its multiples; point
                             # blades' grating flashes a third of a period apart repeated with 0.63 of it)
+RAMP_MIN_PERIOD_CHIRPS = 2.0  # a period shorter is not read off the ramp's parts to overrule a reading: each part
+                            # is differenced along the chirps before its power, so a flash shows in two differences, a
+                            # chirp apart (the parts' correlation at 1 chirp 0.25-0.46 in six drones), and an X-band
+                            # flash about a chirp long read whole at 1.17 chirps
 RAMP_MIN_PAIRS = 0.5        # a lag is read where it pairs half as many parts as lag 0 or more ...
 RAMP_LOCKED_PAIRS = 0.2     # ... or this share, for a flash period held at a few places in the ramp
 RAMP_MAX_SLOTS = 2 ** 19    # the grid of parts read at most (a bounded memory: about 160 B a slot, 84 MB)
@@ -413,7 +417,7 @@ def _masked_autocorrelation(products, pairs, *, min_pairs=RAMP_MIN_PAIRS):
     return r / r[0] if r[0] > 0 else np.where(np.isnan(r), np.nan, 0.0)
 
 
-def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
+def ramp_repeats_whole(train, period_chirps, *, shortest_chirps, over_floor=False):
     """Whether the echo's power, resolved within the ramp (``train``, a :class:`RampTrain`), repeats whole at
     ``period_chirps``: True, False (it repeats at ``period / k`` too: the flashes come k times as often), or None
     (it cannot tell).
@@ -427,7 +431,8 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     period searched):
 
     * the repeat at the period (its best within +-``AROUND``) stands ``POWER_SIGMAS`` robust sigmas of the
-      autocorrelation over the lags read;
+      autocorrelation over the lags read, and, ``over_floor``, over their floor (:func:`ramp_floor`: two drones'
+      parts read flat at 0.02 and about 0.1, each lag "whole" against 0);
     * no ``period / k`` repeats with ``RAMP_SUB_SHARE`` of the period's repeat (else False; rotors a phase apart
       repeat in part at many lags, 0.3-0.45 of the period's in a hexarotor), nor with that share of what flashes
       there would show, the share of them that falls within a ramp times the period's repeat, which must stand
@@ -447,11 +452,12 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
     if last >= len(train.power) // 2:
         return None
     r = train.correlation[:last + 1]
-    read = r[int(lag / 4):last]
-    sigma = robust_sigma(read[np.isfinite(read)]) if np.isfinite(read).sum() > 2 else 0.0
+    read = _lags_read(train, period_chirps)
+    sigma = robust_sigma(read) if len(read) > 2 else 0.0
     peak_lag = _best_lag(r, lag)
     peak = np.nan if peak_lag is None else float(r[peak_lag])
-    if not sigma > 0 or not peak >= POWER_SIGMAS * sigma:
+    floor = ramp_floor(train, period_chirps) if over_floor else 0.0
+    if not sigma > 0 or not peak - floor >= POWER_SIGMAS * sigma:
         return None
     later = local_maxima(r[int(1.5 * lag):last + 1]) + int(1.5 * lag)
     if len(later):
@@ -475,6 +481,22 @@ def ramp_repeats_whole(train, period_chirps, *, shortest_chirps):
         if np.isnan(sub) or expected < RAMP_VISIBLE_SIGMAS * sigma or sub >= RAMP_SUB_SHARE * expected:
             return None  # flashes there could go unseen, or under the noise (or no pairs of parts that far apart)
     return True
+
+
+def _lags_read(train, period_chirps):
+    """The autocorrelation of the echo resolved within the ramp (``train``) at the lags :func:`ramp_repeats_whole`
+    reads about ``period_chirps``: from a quarter of it to ``WHOLE_SPAN`` times it, where read (finite)."""
+    lag = period_chirps / train.slot_chirps
+    read = train.correlation[int(lag / 4):int(np.ceil(WHOLE_SPAN * lag)) + 2]
+    return read[np.isfinite(read)]
+
+
+def ramp_floor(train, period_chirps):
+    """The floor the echo resolved within the ramp (``train``) sits on about ``period_chirps``: its autocorrelation's
+    median over the lags read there (:func:`_lags_read`) where positive, else 0. Slow swings of the parts' power that
+    outlast the trend taken out lift every lag so (two drones' parts: 0.02 and about 0.1)."""
+    read = _lags_read(train, period_chirps)
+    return max(float(np.median(read)), 0.0) if len(read) else 0.0
 
 
 def on_chirp_grid(period_chirps, *, dwell_chirps):

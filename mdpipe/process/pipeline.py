@@ -93,19 +93,20 @@ def flank_views(reader, track_bins, weight, process, common=None):
         common))
 
 
-def analysed_row(reader, detection, target, track_bins, *, process, noise_power, base, capture_notes, flanks=True,
+def analysed_row(reader, detection, target, track_bins, *, process, noise_power, base, capture_notes, undisturbed=True,
                  common=None):
     """One target's row (``base()`` filled in: range, features, class and notes) and its analysis, from its
     ``detection``, ``target`` (:func:`target_signals`: range track, slow time, RX gain, RX weights) and per-chirp
-    ``track_bins``; ``flanks``: whether its range flanks may be read (:func:`flank_views`, beside the capture's
-    ``common`` mode per chirp; not where bursts of another radar light every bin at once, nor where samples clip)."""
+    ``track_bins``; ``undisturbed``: no bursts of another radar light every bin at once and no samples clip, so that
+    its range flanks may be read (:func:`flank_views`, beside the capture's ``common`` mode per chirp) and a chopping
+    read again on the ramp's parts (the bursts fall in some parts of some ramps, again and again)."""
     params = reader.params
     track, signal, rx_gain_db, weight = target
     analysis = analyse_target(signal, prf_hz=params.prf_hz, wavelength_m=params.wavelength_m, noise_power=noise_power,
                               params=process, track=None if detection.fixed_bin is not None else track,  # fixed: no track
                               flash_views=flash_views(reader, track_bins, weight, process),
-                              ramp_share=params.sampled_duration_s / params.chirp_period_s,
-                              flanks=flank_views(reader, track_bins, weight, process, common) if flanks else None)
+                              ramp_share=params.sampled_duration_s / params.chirp_period_s, reread=undisturbed,
+                              flanks=flank_views(reader, track_bins, weight, process, common) if undisturbed else None)
     row = base()
     row.update(range_m=detection.range_m, range_bin=int(detection.bin), range_min_m=float(track.range_m.min()),
                range_max_m=float(track.range_m.max()), rx_gain_db=rx_gain_db)
@@ -280,7 +281,7 @@ def process_capture(path, process, *, frame_counter="auto", overrides=None, allo
         layout = reader.layout.describe()
         analyse = functools.partial(analysed_row, reader, process=process, noise_power=noise,
                                     base=lambda: _base_row(path, stats, process, params, clipped, common, cycle),
-                                    capture_notes=capture_notes, flanks=not (common.crossed or clipped),
+                                    capture_notes=capture_notes, undisturbed=not (common.crossed or clipped),
                                     common=common.series)
         for index, (detection, target, (_, track_bins, _)) in enumerate(zip(detections, targets, tracks)):
             row, analysis = analyse(detection, target, track_bins)
