@@ -499,8 +499,9 @@ def _flashes_between(turn, ramp, *, prf_hz):
 
     Flashes shorter than a chirp, sampled every 1 / PRF, are caught whole at some passages only; their flash times
     and folded comb repeat where the sampling comes round again, after k passages, while the ramp's parts show every
-    passage that falls within a ramp. Quadrotors of 2 blades at 2.7-4 kHz PRFs, rotors 0.2-4.6 % apart, were read
-    `ok` at a fourth or a fifth of their chopping from flash times or a comb, the parts whole at their flash period.
+    passage that falls within a ramp. Quadrotors of 2 blades at 1.7-4 kHz PRFs, rotors up to 4.4 % apart, were read
+    `ok` at a third, a fourth or a fifth of their chopping from flash times or a comb (an unaliased one too: tips seen
+    from 85 deg folded unseen), the parts whole at their flash period.
 
     With the blade count given or measured the chopping is taken at k / (flashes per chopping period) times the
     reading, the rates with it. It is kept as ``ambiguous_period`` (its value; the rate withheld) where the count is

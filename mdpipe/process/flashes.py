@@ -79,8 +79,8 @@ RAMP_SETTLE_SHARE = 0.75    # a period / k taken for a period only where it repe
                             # blades' grating flashes a third of a period apart repeated with 0.63 of it)
 RAMP_MIN_PERIOD_CHIRPS = 2.0  # a period shorter is not read off the ramp's parts to overrule a reading: each part
                             # is differenced along the chirps before its power, so a flash shows in two differences, a
-                            # chirp apart (the parts' correlation at 1 chirp 0.25-0.46 in six drones), and an X-band
-                            # flash about a chirp long read whole at 1.17 chirps
+                            # chirp apart (the parts' correlation at 1 chirp 0.25-0.49 in six drones), and an X-band
+                            # 3-blade quadrotor's parts read whole at 1.17 chirps
 RAMP_MIN_PAIRS = 0.5        # a lag is read where it pairs half as many parts as lag 0 or more ...
 RAMP_LOCKED_PAIRS = 0.2     # ... or this share, for a flash period held at a few places in the ramp
 RAMP_MAX_SLOTS = 2 ** 19    # the grid of parts read at most (a bounded memory: about 160 B a slot, 84 MB)
