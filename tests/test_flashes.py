@@ -370,9 +370,9 @@ def test_a_chopping_the_ramp_confirms_stands():
 
 def test_flashes_within_two_chirps_do_not_overrule_a_reading():
     """At a PRF of 4 kHz (the fastest chopping searched, 3 kHz, flashes every 1.33 chirps), flashes every 1.7 chirps
-    read at half their rate (3.4 chirps): the ramp's parts repeat whole at 1.7,
-    but a period under ``RAMP_MIN_PERIOD_CHIRPS`` is not read there (each part is differenced along the chirps, so
-    a flash shows in it twice, a chirp apart): the reading stands."""
+    read at half their rate (3.4 chirps): the ramp's parts repeat whole at 1.7, but a period under
+    ``RAMP_MIN_PERIOD_CHIRPS`` is not read there (each part is differenced along the chirps, so a flash shows in two
+    differences, a chirp apart): the reading stands."""
     from mdpipe.process.features import _settled_in_ramp
     prf_hz = 4000.0
     train = flashes.ramp_train(_ramp_parts(1.7, wander=0.003), ramp_share=RAMP_SHARE, prf_hz=prf_hz)
