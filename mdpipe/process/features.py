@@ -22,6 +22,7 @@ from mdpipe.process.flashes import (RAMP_MIN_PERIOD_CHIRPS, RAMP_SETTLE_SHARE, P
                                     ramp_floor, ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate,
                                     whole_ratio_apart)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
+from mdpipe.process.ranging import MAIN_LOBE_BINS
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, ShortBursts,
                                      dwell_frames, flap_glide_share, overruns_span, readable_reach_hz, stroke_swing,
@@ -62,7 +63,7 @@ ALIAS_CHECK_CHIRPS = 64      # window of the spectrogram that tells whether the 
 TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats this well each 1/N turn (0.89-0.98)
 DRIFTING_REPEAT = 0.6        # rotors at one rate repeat their echo each turn as one rotor does (0.86-0.99 of the
                              # signal's power); under this share they drift through each other's phases
-HANN_LOBE_BINS = 2.0         # a line reaches this many bins either side of it (a Hann window's main lobe)
+HANN_LOBE_BINS = MAIN_LOBE_BINS["hann"]  # a line reaches this many bins either side of it (a Hann window's main lobe)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 WIDE_BAND_SHARE = 0.75       # an unaliased band over this share of the span decorrelates within a chirp
 MAX_RAMP_DIVISOR = 6         # a power period not whole within the ramp: its halves to sixths are tried there
@@ -1970,7 +1971,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         turn = _undersampled(turn, hidden)
     if hum is not None:
         turn = _on_hum(turn, hum, body_hz=body_doppler_hz, prf_hz=prf_hz)
-    read = turn
+    as_read = turn
     if reread:
         turn = _flashes_between(turn, ramp, prf_hz=prf_hz)
 
@@ -1980,7 +1981,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                             noise_power=noise_power, params=params, n_blades=read.n_blades)
 
     tip, length, edges = lengths(turn)
-    folded = turn if turn is not read else _folded_unseen(  # (the ramp's parts have read it: no shorter flash period)
+    folded = turn if turn is not as_read else _folded_unseen(  # (read on the ramp's parts: no shorter flash period)
         turn, aliased=band.aliased, tips_seen=edges is not None, prf_hz=prf_hz, wavelength_m=wavelength_m,
         elevation_deg=params.elevation_deg, dwell_s=dwell_s)
     if folded is not turn:
