@@ -1946,6 +1946,64 @@ def test_a_drones_two_range_doppler_images_at_a_low_prf_are_told_by_their_flashe
     assert rows[0]["notes"].count("its blade flashes coinciding chirp for chirp with another detection's") == 2
 
 
+def test_an_odd_blade_counts_two_range_doppler_images_at_a_low_prf_are_told_by_flashes_coming_by_turns(tmp_path):
+    """Scene 33 of the low-PRF sweep drawn at seed 557: a quadrotor of 3-blade rotors at 61.4-63.8 rev/s, 13.4 m out
+    at 77 GHz, PRF 3.7 kHz, ramps of 217 us. Its approaching and receding blades landed 1.5 and 0.9 m either side,
+    two detections without a body line, each read as a drone of an ambiguous period: a drone and a ghost. An odd
+    count's flashes come by turns on the two sides, half a chopping period apart: one row, analysed at their hub,
+    the chopping 187.2 Hz read there within 0.3 %, the rate under N = 3 assumed (the flashes alternate sides)."""
+    radar = dict(f_start_hz=76.5e9, f_stop_hz=76.75e9, ramp_up_s=0.000217238, chirp_period_s=0.000271547,
+                 sample_rate_hz=294607.7576851196, n_samples=64, n_chirps=2048, n_channels=1)
+    quad = {"name": "three_blade_quad", "type": "multirotor", "elevation_deg": 51.8537, "body_rcs_m2": 0.0357147,
+            "motion": {"position_m": [7.19616, 2.74891, 11.0145], "velocity_mps": [0.0, 0.0, 0.0]},
+            "rotors": {"count": 4, "blade_profile": "tapered", "tip_reflectivity": 0.961292, "root_m": 0.01,
+                       "phase_deg": [140.302, 300.134, 317.753, 295.008], "blade_rcs_m2": 0.000668837,
+                       "rate_wander_fraction": 0.00618998, "rate_wander_period_s": 1.11663,
+                       "tilt_deg": [4.63416, 3.97263, 1.65037, -4.4197], "blades": 3, "arm_m": 0.391647,
+                       "blade_length_m": 0.202371, "rev_per_s": [63.8202, -62.5093, 61.3611, -61.9046],
+                       "blade_gains": [1.0, 1.0, 1.30822]}}
+    path, _ = simulate(tmp_path, scene_mapping(radar, [quad], noise={"moving_snr_db": 20.5022}, seed=68620696))
+    rows = process_capture(path, ProcessParams(elevation_deg=51.8537)).rows
+    assert len(rows) == 1
+    row = rows[0]
+    assert row["class"] == "drone" and row["range_m"] == pytest.approx(13.44, abs=0.75)
+    assert row["chopping_freq_hz_status"] == "ok" and row["chopping_freq_hz"] == pytest.approx(187.2, rel=0.005)
+    assert row["rotation_rate_hz_status"] == "assumed_blades" and row["n_blades"] == 3
+    assert "by turns with another detection's, half a flash period apart" in row["notes"]
+
+
+def test_a_drones_body_between_its_two_comb_images_is_one_drone_analysed_at_their_hub(tmp_path):
+    """Scene 209 of the low-PRF sweep (seed 555): a quadrotor 8.15 m out at 94 GHz, PRF 2.26 kHz, ramps of 354 us (a
+    tip at 35 m/s lands 3.6 m off). Its two images (4.8 and 12.0 m) show the same folded comb and were analysed at
+    their hub (a drone, 170.3 Hz under N = 2 assumed, for 169.9), while its body, detected at 8.39 m with 0.8 % of the
+    blades' power in its bin, stayed a target of its own, read `none`: two rows for one drone. The body lies at the
+    images' midpoint: the drone analysed there stands in for it, one row."""
+    radar = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=0.00035429, chirp_period_s=0.000442862,
+                 sample_rate_hz=361285.9525473483, n_samples=128, n_chirps=2048, n_channels=4)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 12.3925, "body_rcs_m2": 0.0107237,
+            "body_scatterers": [{"offset_m": [0.05, 0.0, -0.06], "rcs_m2": 0.0104236}],
+            "motion": {"position_m": [2.40416, -0.950237, 7.7581], "velocity_mps": [-0.0538371, 0.0754183, 0.0],
+                       "sway_amplitude_m": [0.0727892, 0.11723, 0.0610071], "sway_period_s": 4.98484},
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [238.303, 187.607, 57.9524, 265.732], "blade_rcs_m2": 0.00114858,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 1.44283,
+                       "tilt_deg": [1.32017, -1.29961, -3.08831, -1.87802], "blades": 2, "arm_m": 0.189013,
+                       "blade_length_m": 0.0659471, "rev_per_s": [84.6943, -84.8347, 85.2253, -85.115],
+                       "blade_gains": [1.0, 1.60035]}}
+    clutter = [{"type": "static", "name": f"clutter{i}", "range_m": r, "azimuth_deg": a, "rcs_m2": s}
+               for i, (r, a, s) in enumerate([(32.6174, -14.6433, 0.111293), (15.6555, 12.3052, 0.272244),
+                                              (32.6174, -6.09349, 0.215324)])]
+    path, _ = simulate(tmp_path, scene_mapping(radar, [quad, *clutter], noise={"moving_snr_db": 27.9953},
+                                               seed=1382400531))
+    rows = process_capture(path, ProcessParams(elevation_deg=12.3925)).rows
+    assert len(rows) == 1
+    row = rows[0]
+    assert row["class"] == "drone" and row["range_m"] == pytest.approx(8.15, abs=0.75)
+    assert row["chopping_freq_hz"] == pytest.approx(169.9, rel=0.005)
+    assert row["chopping_freq_hz_status"] == "assumed_blades" and row["n_blades_source"] == "assumed"
+    assert "analysed at its hub, midway between two detections of its blade flashes at 4.80 and 11.99 m" in row["notes"]
+
+
 def test_a_comb_the_prf_folds_tips_onto_at_its_odd_orders_gives_no_rate_where_the_span_could_hide_them(tmp_path):
     """Scene 86 of the low-PRF sweep drawn at seed 556 (nothing tuned on it): an X-band quadrotor of 2-blade rotors at
     112.7-114.8 rev/s, 10.6 cm blades (tips at 76 m/s), seen at 14.6 deg at a PRF of 4.0 kHz: a span of +-30.5 m/s.

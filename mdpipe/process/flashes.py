@@ -593,6 +593,30 @@ def _ramp_overlap(start, length, ramp_share):
     return inside / length
 
 
+def standardized_correlations(power, *, last):
+    """The correlations of the columns of ``power`` (n, m), each standardised, over lags 0 .. ``last``: a function of
+    two columns ``(a, b)`` giving ``sum_t a[t + lag] b[t] / n`` (``(b, a)``: the negative lags); None where a column
+    is constant."""
+    n = power.shape[0]
+    std = power.std(axis=0)
+    if not np.all(std > 0):
+        return None
+    power = (power - power.mean(axis=0)) / std
+    size = 1 << int(np.ceil(np.log2(2 * n)))
+    spectra = np.fft.rfft(power, size, axis=0)
+
+    def correlation(a, b):
+        return np.fft.irfft(spectra[:, a] * np.conj(spectra[:, b]), size)[:last + 1] / n
+
+    return correlation
+
+
+def correlation_near(r, lag):
+    """The largest of correlations ``r`` within a chirp of a fractional ``lag`` (a flash caught a chirp early or
+    late)."""
+    return float(np.max(r[max(int(np.floor(lag)) - 1, 0):int(np.ceil(lag)) + 2]))
+
+
 def sides_alternate(sides, flash_period_chirps):
     """Whether blade flashes every ``flash_period_chirps`` alternate between the two range sides of the target
     (``sides`` (n_chirps, 2): the body-demodulated slow time ``SIDE_BINS`` below and above its bin,
@@ -620,20 +644,10 @@ def sides_alternate(sides, flash_period_chirps):
     last = int(np.ceil(3 * lag)) + 2
     if lag < 2 or last >= n // 2:
         return False
-    power = np.abs(np.diff(sides, axis=0)) ** 2
-    std = power.std(axis=0)
-    if not np.all(std > 0):
+    correlation = standardized_correlations(np.abs(np.diff(sides, axis=0)) ** 2, last=last)
+    if correlation is None:
         return False
-    power = (power - power.mean(axis=0)) / std
-    size = 1 << int(np.ceil(np.log2(2 * n)))
-    spectra = np.fft.rfft(power, size, axis=0)
-
-    def correlation(a, b):
-        return np.fft.irfft(spectra[:, a] * np.conj(spectra[:, b]), size)[:last + 1] / n
-
-    def at(r, l):
-        return float(np.max(r[max(int(np.floor(l)) - 1, 0):int(np.ceil(l)) + 2]))
-
+    at = correlation_near
     lo, hi, across, back = correlation(0, 0), correlation(1, 1), correlation(0, 1), correlation(1, 0)
     sigma = robust_sigma(np.concatenate([r[int(lag / 4):] for r in (lo, hi, across, back)]))
     if not sigma > 0:

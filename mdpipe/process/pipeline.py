@@ -8,7 +8,7 @@ import numpy as np
 from mdpipe.errors import ParameterError
 from mdpipe.io import open_capture
 from mdpipe.io.iq import is_iq_recording
-from mdpipe.process import (flashes, images, impulses, interference, memory, ranging, saturation, selection,
+from mdpipe.process import (combs, flashes, images, impulses, interference, memory, ranging, saturation, selection,
                             transmitters)
 from mdpipe.process.classify import classify
 from mdpipe.process.cw import process_recording
@@ -152,24 +152,37 @@ def without_images(detections, targets, rows, analyses, params, hub=None, crosse
     ``hub(owner, image)`` (indices; None: not analysed again), and that row replaces the stronger image's where it
     is a drone's: each image holds one side's blade flashes, the approaching blades' or the receding ones', so that
     its flashes repeat once per chopping period whatever the blade count (a 3-blade quadrotor at 94 GHz read at
-    half its chopping frequency, its flashes taken for an odd count's two per period)."""
+    half its chopping frequency, its flashes taken for an odd count's two per period). A target detected at that hub
+    with a body line (:func:`mdpipe.process.images.hubs_between`) owns the images where it reads a drone, and is
+    replaced by the drone analysed at the hub where it reads otherwise: one row a drone."""
     reach_m = images.image_reach_m(params)
     by_combs = images.image_owners(rows, reach_m=reach_m)
-    owners = by_combs if crossed or clipped else images.flash_image_owners(
-        rows, [np.abs(target[1]) ** 2 for target in targets], by_combs, reach_m=reach_m)
+    told = images.FlashImages(by_combs) if crossed or clipped else images.flash_image_owners(
+        rows, [np.abs(target[1]) ** 2 for target in targets], by_combs, reach_m=reach_m,
+        longest_chirps=params.prf_hz / combs.MIN_CHOP_HZ)
+    owners, hubs = images.hubs_between(rows, told.owners, reach_m=reach_m)
     rows, detections, targets, analyses = list(rows), list(detections), list(targets), list(analyses)
-    moved = set()
+    groups = {}
     for image, owner in enumerate(owners):
-        if owner is None:
-            continue
-        note = images.image_note(rows[image], reach_m=reach_m, by_flashes=by_combs[image] is None)
-        if hub is not None and owner not in moved and images.seen_from_a_side(rows[owner]):
-            detection, target, row, analysis = hub(owner, image)
-            if row["class"] == "drone":
-                note = images.hub_note(rows[owner], rows[image], reach_m=reach_m)
-                detections[owner], targets[owner], rows[owner], analyses[owner] = detection, target, row, analysis
-                moved.add(owner)
-        rows[owner]["notes"] += "; " + note
+        if owner is not None:
+            groups.setdefault(owner, []).append(image)
+    for owner, group in groups.items():
+        place, notes, moved = owner, [], False
+        for image in group:
+            how = None if by_combs[image] is not None else images.BY_TURNS if image in told.by_turns else images.AT_ONCE
+            note = images.image_note(rows[image], reach_m=reach_m, by_flashes=how)
+            if hub is not None and not moved and images.seen_from_a_side(rows[owner]):
+                detection, target, row, analysis = hub(owner, image)
+                if row["class"] == "drone":
+                    note = images.hub_note(rows[owner], rows[image], reach_m=reach_m, by_flashes=how)
+                    place, moved = hubs.get(owner, owner), True
+                    detections[place], targets[place], rows[place], analyses[place] = detection, target, row, analysis
+            notes.append(note)
+        if place != owner:  # the drone analysed at its images' hub stands in for the target detected there
+            owners[owner] = place
+            for image in group:
+                owners[image] = place
+        rows[place]["notes"] += "".join("; " + note for note in notes)
     kept = [i for i, owner in enumerate(owners) if owner is None]
     rows = [rows[i] for i in kept]
     for index, row in enumerate(rows):
