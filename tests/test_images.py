@@ -241,7 +241,7 @@ def test_two_drones_flashing_near_one_rate_are_seldom_taken_for_sides():
 
 
 def test_two_drones_whose_trains_only_drift_past_each_other_are_no_sides():
-    """Two quadrotors whose rotors flash every 23.5-23.7 and 22.7-23.3 chirps (1.7 % apart): over the dwell each
+    """Two quadrotors whose rotors flash every 23.5-23.7 and 22.7-23.3 chirps (2 % apart): over the dwell each
     train drifts past the other, and at some offset each repeats at twice it and not at it, but their
     cross-correlation stands under four sigmas there: of 30 draws of their phases none pairs (3 without that test)."""
     paired = 0
@@ -300,3 +300,49 @@ def test_the_drone_analysed_at_its_images_hub_stands_in_for_the_target_detected_
     assert kept[0]["range_m"] == 8.49 and kept[0]["class"] == "drone" and kept[0]["target"] == 0
     assert "analysed at its hub, midway between two detections of its blade flashes at 4.80 and 11.99 m" in (
         kept[0]["notes"])
+
+
+def test_a_target_is_one_drones_hub_at_most():
+    """Two drones' comb images (169 and 120 Hz) both straddle one body detected at 8.39 m: the stronger group takes
+    it for its hub, the other keeps its own owner (analysed at its images' hub)."""
+    rows = [target(4.80, chopping_hz=169.4), target(5.50, chopping_hz=120.0), target(11.99, chopping_hz=168.8),
+            target(11.30, chopping_hz=120.3), target(8.39, "none", body=-0.07)]
+    by_combs = image_owners(rows, reach_m=45.0)
+    assert by_combs == [None, None, 0, 1, None]
+    assert hubs_between(rows, by_combs, reach_m=45.0) == (by_combs, {0: 4})
+
+
+def test_comb_images_given_to_the_drone_between_them_are_noted_as_told_by_their_combs():
+    """``without_images``: a drone with a body line at the midpoint of two comb images owns both, each noted by its
+    comb (the stronger had owned the weaker by their combs), and nothing is analysed again."""
+    from mdpipe.process.pipeline import without_images
+    params = RadarParams(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=354.3e-6, chirp_period_s=442.9e-6,
+                         sample_rate_hz=361286.0, n_samples=128, n_channels=1)
+    rng = np.random.default_rng(11)
+    rows, _ = comb_images_and(target(8.39, "drone", body=-0.07))
+    rows = [dict(row, notes="", target=i) for i, row in enumerate(rows)]
+    targets = [(None, np.sqrt(rng.exponential(1.0, 2048)).astype(complex), 0.0, None) for _ in rows]
+
+    def hub(owner, image):
+        raise AssertionError("a drone with a body line between its images is not analysed again")
+
+    _, _, kept, _ = without_images(["a", "b", "c"], targets, rows, [0, 1, 2], params, hub=hub)
+    assert len(kept) == 1 and kept[0]["range_m"] == 8.39
+    assert kept[0]["notes"].count("its line comb at") == 2 and "coinciding" not in kept[0]["notes"]
+
+
+@pytest.mark.parametrize("case", ["not_finite", "other_length", "constant", "short"])
+def test_powers_that_cannot_be_compared_flash_by_turns_with_none(case):
+    rng = np.random.default_rng(12)
+    periods, phases = quadrotor(rng, 12.2)
+    first, second = rotor_flashes(rng, periods, phases), rotor_flashes(rng, periods, phases, half=0.5)
+    assert flashes_by_turns(first, second, longest_chirps=100)
+    if case == "not_finite":
+        second[7] = np.inf
+    elif case == "other_length":
+        second = second[:-1]
+    elif case == "constant":
+        second = np.ones_like(second)
+    else:
+        first, second = first[:11], second[:11]
+    assert not flashes_by_turns(first, second, longest_chirps=100)

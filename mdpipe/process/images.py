@@ -34,6 +34,7 @@ COINCIDENT_FLASHES = 0.5  # two targets' powers correlated this well over the dw
 TURN_SIGMAS = 4.0        # two powers flashing by turns correlate this many robust sigmas at their offset, and each
                          # repeats this many at twice it ...
 TURN_SHARE = 0.5         # ... and under this share of that at the offset itself
+IMAGE_SYMMETRY = 0.25    # a drone between its images lies this share of their half-span from their midpoint, at most
 AT_ONCE, BY_TURNS = "at_once", "by_turns"  # how two images' flashes come: together (even blade counts) or by turns
 
 
@@ -43,7 +44,6 @@ class FlashImages(NamedTuple):
 
     owners: list
     by_turns: frozenset = frozenset()
-IMAGE_SYMMETRY = 0.25    # a drone between its images lies this share of their half-span from their midpoint, at most
 
 
 def image_reach_m(params):
@@ -101,7 +101,8 @@ def flashes_by_turns(power_a, power_b, *, longest_chirps):
     images flashing at once, repeated at ``tau`` 0.55-3.5 times ``2 tau`` in one power or both. Two quadrotors
     within reach, their rotors within 3 % of one rate (2 % apart in each), paired in 1-4 of 40 draws, at one rate
     in 2-5 (synthetic trains, ``tests/test_images.py``); neither shows a body line where this is asked
-    (:func:`flash_image_owners`), as a drone's hub may."""
+    (:func:`flash_image_owners`), as a drone's hub may. Offsets of 2 chirps or more are read (at 1 the repeat at
+    ``tau`` takes in lag 0)."""
     a, b = np.asarray(power_a, dtype=np.float64), np.asarray(power_b, dtype=np.float64)
     if a.shape != b.shape or a.ndim != 1 or not (np.all(np.isfinite(a)) and np.all(np.isfinite(b))):
         return False
@@ -211,13 +212,14 @@ def hubs_between(rows, owners, *, reach_m):
     owners, hubs = list(owners), {}
     owning = {owner for owner in owners if owner is not None}
     free = [k for k, owner in enumerate(owners) if owner is None and k not in owning]
-    for owner in sorted(owning):
+    for owner in sorted(owning):  # (strongest first: a target is one drone's hub at most)
         if not seen_from_a_side(rows[owner]):
             continue
         members = [owner] + [i for i, o in enumerate(owners) if o == owner]
         hub = straddled(rows, members, reach_m=reach_m, among=free)
         if hub is None:
             continue
+        free.remove(hub)
         if rows[hub].get("class") == "drone":
             for i in members:
                 owners[i] = hub

@@ -162,6 +162,7 @@ def without_images(detections, targets, rows, analyses, params, hub=None, crosse
         longest_chirps=params.prf_hz / combs.MIN_CHOP_HZ)
     owners, hubs = images.hubs_between(rows, told.owners, reach_m=reach_m)
     rows, detections, targets, analyses = list(rows), list(detections), list(targets), list(analyses)
+    by_comb = {i for i, owner in enumerate(by_combs) if owner is not None} | {o for o in by_combs if o is not None}
     groups = {}
     for image, owner in enumerate(owners):
         if owner is not None:
@@ -169,7 +170,7 @@ def without_images(detections, targets, rows, analyses, params, hub=None, crosse
     for owner, group in groups.items():
         place, notes, moved = owner, [], False
         for image in group:
-            how = None if by_combs[image] is not None else images.BY_TURNS if image in told.by_turns else images.AT_ONCE
+            how = None if image in by_comb else images.BY_TURNS if image in told.by_turns else images.AT_ONCE
             note = images.image_note(rows[image], reach_m=reach_m, by_flashes=how)
             if hub is not None and not moved and images.seen_from_a_side(rows[owner]):
                 detection, target, row, analysis = hub(owner, image)
