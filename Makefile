@@ -93,6 +93,7 @@ evaluate-heldout-lowprf: $(MDPIPE)
 	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --out out/evaluate_heldout_lowprf -j 2
 	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --seed 556 --out out/evaluate_heldout_lowprf_556 -j 2
 	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --seed 557 --out out/evaluate_heldout_lowprf_557 -j 2
+	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --seed 558 --out out/evaluate_heldout_lowprf_558 -j 2
 
 # The held-out bird sweep: the default sweep's birds at a counter-drone radar's PRF and dwell (~2 min)
 evaluate-heldout-birds: $(MDPIPE)
