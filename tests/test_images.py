@@ -1,5 +1,7 @@
 """Range-Doppler images: a drone's blade flashes detected off its range are no second target."""
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -279,23 +281,30 @@ def test_no_hub_is_taken_off_the_images_midpoint_or_without_a_body_line(between,
     assert hubs_between(rows, by_combs, reach_m=45.0) == (by_combs, {})
 
 
-def test_the_drone_analysed_at_its_images_hub_stands_in_for_the_target_detected_there():
-    """``without_images``: the images' hub analysis reads a drone; it replaces the `none` row at the hub, the images
-    go, and the row's note names them."""
+def pipeline_images(between, *, seed):
+    """:func:`comb_images_and` ``between`` as the pipeline's rows (notes, target numbers) and targets (noise powers),
+    and ``without_images`` for a 94 GHz radar whose ramp moves a tip at the speed of sound 46 m off."""
     from mdpipe.process.pipeline import without_images
     params = RadarParams(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=354.3e-6, chirp_period_s=442.9e-6,
                          sample_rate_hz=361286.0, n_samples=128, n_channels=1)
-    rng = np.random.default_rng(10)
-    rows, _ = comb_images_and(target(8.39, "none", body=-0.07))
+    rng = np.random.default_rng(seed)
+    rows, _ = comb_images_and(between)
     rows = [dict(row, notes="", target=i) for i, row in enumerate(rows)]
     targets = [(None, np.sqrt(rng.exponential(1.0, 2048)).astype(complex), 0.0, None) for _ in rows]
+    return rows, targets, functools.partial(without_images, params=params)
+
+
+def test_the_drone_analysed_at_its_images_hub_stands_in_for_the_target_detected_there():
+    """``without_images``: the images' hub analysis reads a drone; it replaces the `none` row at the hub, the images
+    go, and the row's note names them."""
+    rows, targets, without_images = pipeline_images(target(8.39, "none", body=-0.07), seed=10)
     drone = dict(target(8.49, chopping_hz=170.3, body=-0.07), notes="class: blade line comb at 170.3 Hz")
 
     def hub(owner, image):
         assert (owner, image) == (0, 1)
         return "hub", targets[2], dict(drone), "analysis"
 
-    detections, _, kept, analyses = without_images(["a", "b", "c"], targets, rows, [0, 1, 2], params, hub=hub)
+    detections, _, kept, analyses = without_images(["a", "b", "c"], targets, rows, [0, 1, 2], hub=hub)
     assert detections == ["hub"] and analyses == ["analysis"] and len(kept) == 1
     assert kept[0]["range_m"] == 8.49 and kept[0]["class"] == "drone" and kept[0]["target"] == 0
     assert "analysed at its hub, midway between two detections of its blade flashes at 4.80 and 11.99 m" in (
@@ -315,18 +324,12 @@ def test_a_target_is_one_drones_hub_at_most():
 def test_comb_images_given_to_the_drone_between_them_are_noted_as_told_by_their_combs():
     """``without_images``: a drone with a body line at the midpoint of two comb images owns both, each noted by its
     comb (the stronger had owned the weaker by their combs), and nothing is analysed again."""
-    from mdpipe.process.pipeline import without_images
-    params = RadarParams(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=354.3e-6, chirp_period_s=442.9e-6,
-                         sample_rate_hz=361286.0, n_samples=128, n_channels=1)
-    rng = np.random.default_rng(11)
-    rows, _ = comb_images_and(target(8.39, "drone", body=-0.07))
-    rows = [dict(row, notes="", target=i) for i, row in enumerate(rows)]
-    targets = [(None, np.sqrt(rng.exponential(1.0, 2048)).astype(complex), 0.0, None) for _ in rows]
+    rows, targets, without_images = pipeline_images(target(8.39, "drone", body=-0.07), seed=11)
 
     def hub(owner, image):
         raise AssertionError("a drone with a body line between its images is not analysed again")
 
-    _, _, kept, _ = without_images(["a", "b", "c"], targets, rows, [0, 1, 2], params, hub=hub)
+    _, _, kept, _ = without_images(["a", "b", "c"], targets, rows, [0, 1, 2], hub=hub)
     assert len(kept) == 1 and kept[0]["range_m"] == 8.39
     assert kept[0]["notes"].count("its line comb at") == 2 and "coinciding" not in kept[0]["notes"]
 
