@@ -119,7 +119,8 @@ def flashes_by_turns(power_a, power_b, *, longest_chirps):
     for own in (correlation(0, 0), correlation(1, 1)):
         own_sigma = robust_sigma(own[1:2 * longest + 2])
         twice = correlation_near(own, 2 * offset)
-        if not (own_sigma > 0 and twice >= TURN_SIGMAS * own_sigma and correlation_near(own, offset) < TURN_SHARE * twice):
+        if not (own_sigma > 0 and twice >= TURN_SIGMAS * own_sigma
+                and correlation_near(own, offset) < TURN_SHARE * twice):
             return False
     return True
 
@@ -142,10 +143,11 @@ def flash_image_owners(rows, powers, owners, *, reach_m, longest_chirps=0):
     analysed at their hub by :func:`mdpipe.process.pipeline.without_images`). A target read otherwise keeps none: the
     images may be all that shows the drone. Odd blade counts flash one side at a time: their images do not flash
     together but by turns (on the low-PRF sweeps, seeds 555-557, 15 of the 37 captures holding more than one detection
-    were such a drone, its second image read as a second drone). Bursts of another radar crossing ours light every bin at once, and all targets
-    flash together; a clipped echo's images (:mod:`mdpipe.process.saturation`) swing with its power: the caller does
-    not ask then (on `make bench-impairments`, a clipped capture's image was grouped so and left a drone). A target
-    whose echo holds mains hum (``mains_hum_hz``) swings with the supply, not with blades: it is no member."""
+    were such a drone, its second image read as a second drone). Bursts of another radar crossing ours light every bin
+    at once, and all targets flash together; a clipped echo's images (:mod:`mdpipe.process.saturation`) swing with its
+    power: the caller does not ask then (on `make bench-impairments`, a clipped capture's image was grouped so and
+    left a drone). A target whose echo holds mains hum (``mains_hum_hz``) swings with the supply, not with blades: it
+    is no member."""
     owners = list(owners)
     owning = {owner for owner in owners if owner is not None}
     pool = [i for i, owner in enumerate(owners) if owner is None and i not in owning
@@ -207,8 +209,9 @@ def hubs_between(rows, owners, *, reach_m):
     analysed at the images' hub stands in its place (:func:`mdpipe.process.pipeline.without_images`). Returns
     ``(owners, hubs)``, ``hubs`` a dict owner -> target.
 
-    Two W-band quadrotors of the low-PRF sweep (seeds 555, 556) were read twice so: their comb images, analysed at
-    their hub, and their body 0.1-0.7 m from it (one read `none`, its bin holding 0.8 % of the blades' power)."""
+    Two W-band drones of the low-PRF sweep (a quadrotor at seed 555, a hexarotor at 556) were read twice so: their
+    comb images, analysed at their hub, and their body 0.1-0.7 m from it (the quadrotor's read `none`, its bin holding
+    0.8 % of the blades' power)."""
     owners, hubs = list(owners), {}
     owning = {owner for owner in owners if owner is not None}
     free = [k for k, owner in enumerate(owners) if owner is None and k not in owning]
