@@ -311,14 +311,29 @@ def test_the_drone_analysed_at_its_images_hub_stands_in_for_the_target_detected_
         kept[0]["notes"])
 
 
-def test_a_target_is_one_drones_hub_at_most():
+@pytest.mark.parametrize("cls", ["none", "drone"])
+def test_a_target_is_one_drones_hub_at_most(cls):
     """Two drones' comb images (169 and 120 Hz) both straddle one body detected at 8.39 m: the stronger group takes
-    it for its hub, the other keeps its own owner (analysed at its images' hub)."""
+    it for its hub (owned by it where it reads a drone, standing in for it where it does not), the other keeps its own
+    owner (analysed at its images' hub)."""
     rows = [target(4.80, chopping_hz=169.4), target(5.50, chopping_hz=120.0), target(11.99, chopping_hz=168.8),
-            target(11.30, chopping_hz=120.3), target(8.39, "none", body=-0.07)]
+            target(11.30, chopping_hz=120.3), target(8.39, cls, body=-0.07)]
     by_combs = image_owners(rows, reach_m=45.0)
     assert by_combs == [None, None, 0, 1, None]
-    assert hubs_between(rows, by_combs, reach_m=45.0) == (by_combs, {0: 4})
+    if cls == "none":
+        assert hubs_between(rows, by_combs, reach_m=45.0) == (by_combs, {0: 4})
+    else:
+        assert hubs_between(rows, by_combs, reach_m=45.0) == ([4, None, 4, 1, None], {})
+
+
+def test_a_drone_between_two_pairs_of_images_owns_one_pair():
+    """A drone with a body line at 10 m between two pairs of detections flashing together (7 and 13 m, 8 and 12 m):
+    the stronger pair is its images, the other pair its own (another drone's sides)."""
+    rng = np.random.default_rng(13)
+    first, second = two_images(rng), two_images(rng)
+    rows = [target(10.0, body=-0.05), target(7.0), target(13.0), target(8.0), target(12.0)]
+    powers = [rng.exponential(50.0, 2048), first[0], first[1], second[0], second[1]]
+    assert flash_image_owners(rows, powers, [None] * 5, reach_m=23.0).owners == [None, 0, 0, None, 3]
 
 
 def test_comb_images_given_to_the_drone_between_them_are_noted_as_told_by_their_combs():

@@ -180,9 +180,12 @@ def flash_image_owners(rows, powers, owners, *, reach_m, longest_chirps=0):
             clusters.append(members)
             grouped.update(members)
             turns.update(k for pair in paired for k in pair)
+    hubs = set()  # (a drone is one cluster's hub at most)
     for members in clusters:
         hub = straddled(rows, members, reach_m=reach_m, among=[k for k, row in enumerate(rows) if owners[k] is None
-                                                               and k not in grouped and row.get("class") == "drone"])
+                                                               and k not in grouped and k not in hubs
+                                                               and row.get("class") == "drone"])
+        hubs.add(hub)
         owner = members[0] if hub is None else hub
         for i in members:
             if i != owner:
