@@ -647,17 +647,17 @@ def sides_alternate(sides, flash_period_chirps):
     correlation = standardized_correlations(np.abs(np.diff(sides, axis=0)) ** 2, last=last)
     if correlation is None:
         return False
-    at = correlation_near
     lo, hi, across, back = correlation(0, 0), correlation(1, 1), correlation(0, 1), correlation(1, 0)
     sigma = robust_sigma(np.concatenate([r[int(lag / 4):] for r in (lo, hi, across, back)]))
     if not sigma > 0:
         return False
-    apart, together = max(at(across, lag), at(back, lag)), max(at(across, 0), at(back, 0))
+    apart, together = (max(correlation_near(across, lag), correlation_near(back, lag)),
+                       max(correlation_near(across, 0), correlation_near(back, 0)))
     both = lo + hi
     both_sigma = robust_sigma(both[int(lag / 4):])
-    if not (both_sigma > 0 and at(both, 2 * lag) >= SIDE_SIGMAS * both_sigma):
+    if not (both_sigma > 0 and correlation_near(both, 2 * lag) >= SIDE_SIGMAS * both_sigma):
         return False
     for own in (lo, hi):
-        if at(own, lag) > max(SIDE_SHARE * at(own, 2 * lag), SIDE_NEXT_SIGMAS * sigma):
+        if correlation_near(own, lag) > max(SIDE_SHARE * correlation_near(own, 2 * lag), SIDE_NEXT_SIGMAS * sigma):
             return False
     return apart >= SIDE_SIGMAS * sigma and together <= SIDE_SHARE * apart
