@@ -33,7 +33,7 @@ def test_wingbeat_of_a_bird_of_flapping_wing_points(tmp_path):
     assert row["wingbeat_freq_hz"] == pytest.approx(truth["wb"], rel=0.005)
 
 
-@pytest.mark.parametrize("sid", [43, 154, 210, 53])
+@pytest.mark.parametrize("sid", [43, 154, 210, pytest.param(53, marks=pytest.mark.slow)])  # (53: 7 s a run)
 def test_wingbeat_read_off_the_body_line(tmp_path, sid):
     """Birds whose rows lit in half the frames are the body line's main lobe (0-2 wing rows): the wings cross the
     body's Doppler at both turns of the stroke, so those rows repeat at T / 2 (or, a slow beat in them, 2 T). Read
@@ -100,6 +100,7 @@ def test_a_comb_at_three_times_the_chopping_read_at_its_fundamental(tmp_path):
     assert row["rotation_rate_hz"] == pytest.approx(truth["rate"], rel=0.005)
 
 
+@pytest.mark.slow  # (its scene takes 11 s to make)
 def test_a_period_made_whole_by_the_chirps_is_withheld(tmp_path):
     """Six 3-blade rotors at one rate at 77 GHz, -5 dB, their tips reaching 92 % of the span: the echo, decorrelating
     within a chirp, repeats only at lags near a whole number of chirps, and its period, 34.8 chirps,

@@ -19,16 +19,26 @@ from mdpipe.report import tables
 
 SAMPLES = Path(__file__).resolve().parents[1] / "data_samples"
 MDPIPE = [sys.executable, "-c", "import sys; from mdpipe.cli import run; sys.argv[0] = 'mdpipe'; run()"]
-N_CAPTURES = 24
+N_CAPTURES = 24  # ~0.15 s each: a run lasts a few seconds, long enough to be stopped within
+N_WAITING = 6    # for runs that are not stopped: enough for two runs on one OUT to overlap
+
+
+def captures_folder(tmp_path, n_captures):
+    folder = tmp_path / "in"
+    for i in range(n_captures):
+        (folder / f"part{i % 2}").mkdir(parents=True, exist_ok=True)
+        shutil.copy(SAMPLES / ("phantom4_xband.h5" if i % 2 else "gull_flyby.h5"), folder / f"part{i % 2}" / f"c{i}.h5")
+    return folder
 
 
 @pytest.fixture
 def folder(tmp_path):
-    folder = tmp_path / "in"
-    for i in range(N_CAPTURES):  # ~0.15 s each: a run lasts a few seconds
-        (folder / f"part{i % 2}").mkdir(parents=True, exist_ok=True)
-        shutil.copy(SAMPLES / ("phantom4_xband.h5" if i % 2 else "gull_flyby.h5"), folder / f"part{i % 2}" / f"c{i}.h5")
-    return folder
+    return captures_folder(tmp_path, N_CAPTURES)
+
+
+@pytest.fixture
+def few(tmp_path):
+    return captures_folder(tmp_path, N_WAITING)
 
 
 def start(folder, out, command="batch"):
@@ -126,28 +136,28 @@ def test_killed_batch_is_finished_by_the_next_run(folder, tmp_path):
     assert len(json.loads((out / "manifest.json").read_text())["captures"]) == N_CAPTURES
 
 
-def test_a_second_run_waits_for_the_first(folder, tmp_path):
+def test_a_second_run_waits_for_the_first(few, tmp_path):
     out = tmp_path / "out"
     with runner.locked(out):  # a first run holds OUT
-        second = start(folder, out)
+        second = start(few, out)
         line = second.stderr.readline()
         assert line == f"{out} is in use by another mdpipe run (pid {os.getpid()}); waiting for it to finish\n"
         time.sleep(0.5)
         assert second.poll() is None and not list(out.rglob(tables.MARKER))  # it waits, writing nothing
     stdout, stderr = second.communicate(timeout=120)
     assert second.returncode == 0, stderr
-    assert f"{N_CAPTURES} captures: {N_CAPTURES} processed, 0 up to date, 0 failed" in stdout
+    assert f"{N_WAITING} captures: {N_WAITING} processed, 0 up to date, 0 failed" in stdout
 
 
-def test_two_runs_on_one_out_at_once(folder, tmp_path):
+def test_two_runs_on_one_out_at_once(few, tmp_path):
     out = tmp_path / "out"
-    runs = [start(folder, out), start(folder, out)]
+    runs = [start(few, out), start(few, out)]
     results = [run.communicate(timeout=120) for run in runs]
     assert [run.returncode for run in runs] == [0, 0], results
     processed = [int(re.search(r"captures: (\d+) processed", stdout).group(1)) for stdout, _ in results]
-    assert sum(processed) == N_CAPTURES  # one after the other: each capture processed once
-    assert len(assert_nothing_half_published(out)) == N_CAPTURES
-    assert len(json.loads((out / "manifest.json").read_text())["captures"]) == N_CAPTURES
+    assert sum(processed) == N_WAITING  # one after the other: each capture processed once
+    assert len(assert_nothing_half_published(out)) == N_WAITING
+    assert len(json.loads((out / "manifest.json").read_text())["captures"]) == N_WAITING
 
 
 # `mdpipe process INPUT --out OUT` whose reader options, read as its captures are set up, send SIGINT from inside a
