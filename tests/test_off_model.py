@@ -1736,6 +1736,25 @@ def test_a_chopping_comb_folds_onto_odd_orders_near_an_odd_multiple(prf_hz, fold
     assert _folds_onto_odd_orders(100.0, prf_hz=prf_hz, dwell_s=1.0) is folds
 
 
+@pytest.mark.parametrize("prf_hz, multiples", [
+    (2600.0, (3, 5, 7)),      # M = 26: 2, 4 and 6 share its factor 2 (their combs fold onto the even orders only)
+    (1300.0, (2, 3, 4, 5, 6, 7)),  # M = 13, prime: every k
+    (3000.0, (7,)),           # M = 30 = 2 3 5: only 7, its orders filled after three folds
+    (2601.5, (3,)),           # 1.5 bins off 26 times: once folded, k = 3, within the lobe; k = 5, folded twice, not
+    (2603.0, ()),             # 3 bins off: no fold lands within the main lobe
+    (2650.0, ())])            # 26.5 times: off every multiple
+def test_a_comb_folds_onto_every_order_of_a_comb_k_times_finer_for_k_prime_to_the_prf_multiple(prf_hz, multiples):
+    """A comb at 100 Hz seen 1 s (1 Hz bins), multiples up to 7: a comb at k times it folded n times lies at (k m - n
+    M) 100 Hz, M = PRF / 100 Hz, n times the PRF's offset from M 100 Hz off the grid; for k prime to M its lines fill
+    every order once n reaches k // 2."""
+    from mdpipe.process.features import _fold_multiples
+    assert _fold_multiples(100.0, prf_hz=prf_hz, dwell_s=1.0, up_to=7) == multiples
+    # the arithmetic itself: the comb at 3 x 100 Hz folded by 2600 Hz, its lines up to 4 folds, lands on every order
+    lines_hz = np.concatenate([3 * 100.0 * np.arange(1, 40), -3 * 100.0 * np.arange(1, 40)])
+    folded = np.round((lines_hz + 1300.0) % 2600.0 - 1300.0)
+    assert set(np.round(folded / 100.0) % 26) == set(range(26))
+
+
 def test_a_bird_whose_power_ripples_between_slow_swells_has_no_flash_times(tmp_path):
     """A pigeon of the seed 4321 draw of the default sweep (scene 229, with its clutter) at 94 GHz, PRF 3.4 kHz,
     seen 1.67 s: flapping 1.58 s, gliding 0.75 s, its wing band folded over the span. Events of its power repeat
@@ -2031,6 +2050,72 @@ def test_a_comb_the_prf_folds_tips_onto_at_its_odd_orders_gives_no_rate_where_th
     assert "chopping frequency 114.6 Hz or twice it" in row["notes"]  # the ramp's parts: flashes every 17.5 chirps
 
 
+def test_a_comb_the_prf_folds_a_three_times_finer_chopping_onto_gives_no_rate(tmp_path):
+    """Scene 167 of the low-PRF sweep drawn at seed 558: an X-band quadrotor of 3-blade rotors (8.9 cm, 16 points
+    each) at 65.7-66.5 rev/s, chopping at 197.8 Hz, its tips at 37 m/s, at a PRF of 1.72 kHz: a span of +-13.0 m/s.
+    The PRF lay 1.6 bins from 26 times 66.1 Hz; 26 is even, so a comb at twice it folds onto the even orders only,
+    but one at 3 times it (the chopping) folds once onto the orders of 1 and 2 mod 3: its lines filled a comb at a
+    third of the chopping, read `ok` with N = 3 given (22 rev/s, a third of the truth). The comb's spacing is kept
+    as ambiguous, no rate."""
+    radar = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=0.000465867, chirp_period_s=0.000582333,
+                 sample_rate_hz=137378.26474938128, n_samples=64, n_chirps=2048, n_channels=2)
+    quad = {"name": "quadrotor_xband", "type": "multirotor", "elevation_deg": 45.8045, "body_rcs_m2": 0.00528428,
+            "motion": {"position_m": [9.58439, 4.74063, 9.43424], "velocity_mps": [0.0, 0.0, 0.0],
+                       "sway_amplitude_m": [0.081918, 0.191524, 0.0661999], "sway_period_s": 3.47055},
+            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 16, "root_m": 0.01,
+                       "phase_deg": [145.667, 311.182, 17.189, 75.3396], "blade_rcs_m2": 0.000387194,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 0.691816,
+                       "tilt_deg": [-4.80653, -2.57938, 0.749276, -1.38122], "blades": 3, "arm_m": 0.265333,
+                       "blade_length_m": 0.0892584, "rev_per_s": [65.8442, -65.6525, 65.7699, -66.4987]}}
+    clutter = [{"type": "static", "name": "clutter0", "range_m": 40.7718, "azimuth_deg": 18.093, "rcs_m2": 4.50213}]
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=14.6857, seed=1252852273, clutter=clutter, n_blades=3)
+    assert row["class"] == "drone" and not row["aliased"]
+    assert row["chopping_freq_hz"] == pytest.approx(197.8 / 3, rel=0.01)  # a third of the truth: not stood behind
+    assert row["chopping_freq_hz_status"] == "ambiguous_period"
+    assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == "ambiguous_period"
+    assert "chopping frequency 66.1 Hz, or 198.3 Hz (3 times it)" in row["notes"]
+
+
+def test_flash_edges_at_the_span_ends_tell_no_tips_seen_inside_it(tmp_path):
+    """Scene 81 of the low-PRF sweep drawn at seed 558: an X-band quadrotor of 2-blade rotors (14.7 cm, 8 points
+    each) at 133.1-133.6 rev/s, chopping at 266.7 Hz, its tips at 123 m/s (68 m/s seen from 56 deg), at a PRF of
+    1.73 kHz: a span of +-13.1 m/s. The PRF lay 0.3 bin from 13 times 133.2 Hz, and the comb at the chopping folded
+    onto the odd orders of one at half it, read `ok` (N = 2 assumed): flash edges read at +-750 Hz, 0.87 of the
+    866 Hz half-span, had counted as tips seen inside the span. Folded tips fill the span to its ends: the comb's
+    spacing kept as ambiguous, no rate."""
+    radar = dict(f_start_hz=9.8e9, f_stop_hz=10.05e9, ramp_up_s=0.000462046, chirp_period_s=0.000577557,
+                 sample_rate_hz=138514.34719486805, n_samples=64, n_chirps=2048, n_channels=2)
+    quad = {"name": "quadrotor_xband", "type": "multirotor", "elevation_deg": 56.2147, "body_rcs_m2": 0.026051,
+            "motion": {"position_m": [4.74283, 3.74892, 9.39926], "velocity_mps": [-3.44201, -3.82207, 0.0],
+                       "sway_amplitude_m": [0.161878, 0.0734398, 0.0161003], "sway_period_s": 2.52997},
+            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 8, "root_m": 0.01,
+                       "phase_deg": [29.9264, 56.2374, 244.938, 96.5697], "blade_rcs_m2": 0.0069101,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 2.64326,
+                       "tilt_deg": [-1.78197, -3.95963, 1.09457, 1.24569], "blades": 2, "arm_m": 0.122243,
+                       "blade_length_m": 0.147442, "rev_per_s": [133.621, -133.562, 133.064, -133.07]}}
+    clutter = [{"type": "static", "name": f"clutter{i}", "range_m": 16.3087, "azimuth_deg": azimuth_deg, "rcs_m2": rcs}
+               for i, (azimuth_deg, rcs) in enumerate([(34.9868, 0.163279), (20.4079, 0.505361), (5.1397, 0.317943)])]
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=12.9421, seed=1932913031, clutter=clutter,
+                    elevation_deg=56.2147)
+    assert row["class"] == "drone" and not row["aliased"]
+    assert row["blade_length_m_status"] == "no_rotation"  # (few_harmonics before: the edges' 3.5 bins a side)
+    assert row["chopping_freq_hz"] == pytest.approx(266.7 / 2, rel=0.01)  # half the truth: not stood behind
+    assert row["chopping_freq_hz_status"] == "ambiguous_period"
+    assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == "ambiguous_period"
+    assert "chopping frequency 133.2 Hz, or 266.4 or 399.6 Hz (twice or 3 times it)" in row["notes"]
+
+
+@pytest.mark.parametrize("edges_hz, inside", [
+    (None, False),                # no flash with both edges read
+    ((-300.0, 320.0), True),      # within 0.64 of the 500 Hz half-span
+    ((-300.0, 380.0), False),     # one edge at 0.76 of it: the span's end, where folded tips reach
+    ((-380.0, 300.0), False),
+    ((-374.0, 374.0), True)])     # just under three quarters
+def test_flash_edges_show_tips_inside_the_span_only_short_of_its_ends(edges_hz, inside):
+    from mdpipe.process.features import _tips_inside_span
+    assert _tips_inside_span(edges_hz, prf_hz=1000.0) is inside
+
+
 @pytest.mark.parametrize("aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, held", [
     (False, False, 4011.0, 0.0306, 14.6, True),    # PRF 35.0 times 114.6 Hz: a span of +-30.7 m/s may hide tips
     (True, False, 4011.0, 0.0306, 14.6, False),    # read aliased: the folded-comb tests apply instead
@@ -2042,7 +2127,9 @@ def test_a_comb_the_prf_folds_tips_onto_at_its_odd_orders_gives_no_rate_where_th
     (False, False, 4011.0, 0.0306, -80.0, True),   # from below as from above
     (False, False, 4011.0, 0.0306, -88.0, False),
     (False, False, 4011.0, 0.0306, 3.0, True),     # within the tilt of edge-on: the tips' full 150 m/s
-    (False, False, 4011.0, 0.0306, None, True)])   # elevation not given: taken edge-on
+    (False, False, 4011.0, 0.0306, None, True),    # elevation not given: taken edge-on
+    (False, False, 2979.6, 0.0306, 14.6, True),    # 26.0 times: a comb at 3 times 114.6 Hz folds onto it
+    (False, False, 2750.4, 0.0306, 14.6, False)])  # 24.0 times (2 2 2 3): 5 times it would fold twice
 def test_a_chopping_read_unaliased_on_an_odd_fold_is_withheld_only_where_the_span_could_hide_tips(
         aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, held):
     from mdpipe.process.features import Measured, Rotation, _folded_unseen
@@ -2052,6 +2139,8 @@ def test_a_chopping_read_unaliased_on_an_odd_fold_is_withheld_only_where_the_spa
     assert (result is turn) is not held
     if held:  # the comb's spacing kept, not stood behind; the rate withheld; the blade count as given
         assert result.chopping.value == 114.6 and result.chopping.status == "ambiguous_period"
+        others = {35: "229.2 or 343.8 Hz (twice or 3 times it)", 26: "343.8 Hz (3 times it)"}[round(prf_hz / 114.6)]
+        assert f"chopping frequency 114.6 Hz, or {others}" in result.chopping.note
         assert result.rate.value is None and result.rate.status == "ambiguous_period"
         assert (result.n_blades, result.n_blades_source) == (2, "given")
 

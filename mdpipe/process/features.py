@@ -7,6 +7,7 @@ Each measurement is one function returning :class:`~mdpipe.process.validity.Meas
 """
 
 import functools
+import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -64,6 +65,7 @@ TAGGED_REPEAT = 0.8          # a rotor with one blade differing still repeats th
 DRIFTING_REPEAT = 0.6        # rotors at one rate repeat their echo each turn as one rotor does (0.86-0.99 of the
                              # signal's power); under this share they drift through each other's phases
 HANN_LOBE_BINS = MAIN_LOBE_BINS["hann"]  # a line reaches this many bins either side of it (a Hann window's main lobe)
+ONCE_FOLDED_MULTIPLES = 3    # a comb at k f folded once fills every order of the comb at f for k up to this
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 WIDE_BAND_SHARE = 0.75       # an unaliased band over this share of the span decorrelates within a chirp
 MAX_RAMP_DIVISOR = 6         # a power period not whole within the ramp: its halves to sixths are tried there
@@ -456,33 +458,52 @@ def _undersampled(turn, why):
 
 
 def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, dwell_s):
-    """``turn`` (a :class:`Rotation`), its chopping frequency kept as ``ambiguous_period`` (it or twice it; the blade
-    count as it was; the rate withheld) where it was read in a band that shows no aliasing, no flash showed both the
-    tips' Doppler edges inside the span (``tips_seen``: the blade length's reading, :func:`blade_length`, got them),
-    the span (``lambda PRF / 4``) holds no tips of the fastest rotor (``rotor.MAX_ROTOR_TIP_MPS``, seen at the elevation
-    given, its disc tilted ``ROTOR_TILT_DEG`` towards edge-on; else edge-on), and the PRF lies within the Hann main
-    lobe of an odd multiple of it (:func:`_folds_onto_odd_orders`).
-    Tips folded once, too faint to light the span's ends, then put twice that chopping's lines on the odd orders of a
-    comb at it: the echo shows the same comb, and the same period, for either. Three X-band drones at PRFs of
-    2.2-4.4 kHz (spans of 17-34 m/s), N = 2 given or not, were read at half their chopping, `ok`, the PRF 0.11-0.28 bin
-    from 35, 45 and 45 times the comb (a fourth, 2.9 bins from 17 times it, is not told); three right readings lay
-    within the lobe too (0.9-1.7 bins: a 94 GHz hexarotor, an X-band quadrotor, a 77 GHz one seen from 81 deg). Of
-    `make offmodel`'s scenes, three right readings at K and X band (PRFs of 9.4-20.9 kHz) lay within it with their flash
-    edges read inside the span, their blade lengths given: tips seen inside the span do not fold."""
+    """``turn`` (a :class:`Rotation`), its chopping frequency kept as ``ambiguous_period`` (it or a whole multiple; the
+    blade count as it was; the rate withheld) where it was read in a band that shows no aliasing, no flash showed both
+    the tips' Doppler edges inside the span (``tips_seen``: :func:`_tips_inside_span`), the span (``lambda PRF / 4``)
+    holds no tips of the fastest rotor (``rotor.MAX_ROTOR_TIP_MPS``, seen at the elevation given, its disc tilted
+    ``ROTOR_TILT_DEG`` towards edge-on; else edge-on), and the PRF lies within the Hann main lobe of a whole multiple
+    M of it with k = 2 or 3 prime to M (``ONCE_FOLDED_MULTIPLES``, :func:`_fold_multiples`).
+    Tips folded once, too faint to light the dwell's band out to the span's ends, then put k times that chopping's
+    lines on the orders of a comb at it that k's own lines leave: the echo shows the same comb, and the same period,
+    for either. (A comb at 5 times or more fills them only folded twice or more, by tips that light the span's ends:
+    where M is a multiple of 6 three right readings at X and 77 GHz lay within the lobe, and none wrong.) Three X-band drones at PRFs of 2.2-4.4 kHz (spans of 17-34 m/s), N = 2 given or not, were read at
+    half their chopping, `ok`, the PRF 0.11-0.28 bin from 35, 45 and 45 times the comb (a fourth, 2.9 bins from 17
+    times it, is not told); three right readings lay within the lobe too (0.9-1.7 bins: a 94 GHz hexarotor, an X-band
+    quadrotor, a 77 GHz one seen from 81 deg). Two X-band quadrotors of 3-blade rotors at PRFs of 1.7 and 1.8 kHz were
+    read at a third, the PRF 1.2 and 1.6 bins from 26 times the comb (k = 2 shares M's factor; k = 3 does not), and an
+    X-band quadrotor at half, 0.3 bin from 13 times it, its flash edges read at 0.87 of the half-span: the span's
+    ends, not its tips. Of `make offmodel`'s scenes, three right readings at K and X band (PRFs of 9.4-20.9 kHz) lay
+    within the lobe with their flash edges read inside the span, their blade lengths given: tips seen inside the span
+    do not fold."""
     chopping_hz = turn.chopping.value
     if aliased or tips_seen or chopping_hz is None:
         return turn
     seen_deg = 0.0 if elevation_deg is None else _disc_seen_deg(elevation_deg, towards_face_on=False)
     fastest_mps = rotor.MAX_ROTOR_TIP_MPS * np.cos(np.deg2rad(seen_deg))
     span_mps = wavelength_m * prf_hz / 4
-    if span_mps >= fastest_mps or not _folds_onto_odd_orders(chopping_hz, prf_hz=prf_hz, dwell_s=dwell_s):
+    multiples = _fold_multiples(chopping_hz, prf_hz=prf_hz, dwell_s=dwell_s,
+                                up_to=min(ONCE_FOLDED_MULTIPLES, combs.MAX_CHOP_HZ / chopping_hz))
+    if span_mps >= fastest_mps or not multiples:
         return turn
-    note = (f"chopping frequency {chopping_hz:.4g} Hz or twice it, and rotation not estimable: the span reaches "
-            f"+-{span_mps:.3g} m/s, under the {fastest_mps:.3g} m/s a rotor's tips may, and the PRF lies within "
-            f"{HANN_LOBE_BINS:g} bins of an odd multiple of it: tips folded unseen would put a chopping of "
-            f"{2 * chopping_hz:.4g} Hz on the odd orders of its comb (another PRF tells which)")
+    others = " or ".join(f"{k * chopping_hz:.4g}" for k in multiples)
+    times = " or ".join("twice" if k == 2 else f"{k} times" for k in multiples)
+    note = (f"chopping frequency {chopping_hz:.4g} Hz, or {others} Hz ({times} it), and rotation not estimable: the "
+            f"span reaches +-{span_mps:.3g} m/s, under the {fastest_mps:.3g} m/s a rotor's tips may, and the PRF lies "
+            f"within {HANN_LOBE_BINS:g} bins of {prf_hz / chopping_hz:.0f} times it: tips folded once, unseen, would "
+            f"put such a chopping's lines on the orders of its comb that its own leave (another PRF tells which)")
     return replace(turn, chopping=Measured(chopping_hz, "ambiguous_period", note),
                    rate=withheld("ambiguous_period", note), rotor_rates_hz=())
+
+
+def _tips_inside_span(edges, *, prf_hz):
+    """Whether a flash's Doppler edges (``(low_hz, high_hz)`` about the body line, or None: none read,
+    :func:`blade_length`) show blade tips inside the span: both within ``WIDE_BAND_SHARE`` of its half (``PRF / 2``).
+    Tips beyond the span fold and fill it to its ends, where edges then read the span's, not the tips'. Two X-band
+    quadrotors read at a half and a third of their chopping, their tips at 37 and 123 m/s over spans of +-13 m/s,
+    showed edges at 0.87 and 0.90 of the half-span (read over 3.5-3.6 Doppler bins a side, `few_harmonics`); right
+    readings whose tips lay inside the span, at 0.37 (a 94 GHz quadrotor's 40 m/s, at 7.4 bins a side)."""
+    return edges is not None and max(abs(edge_hz) for edge_hz in edges) < WIDE_BAND_SHARE * prf_hz / 2
 
 
 def _flashes_between(turn, ramp, *, prf_hz):
@@ -1550,14 +1571,30 @@ def _rotors_drift_on_comb(micro, lines, spacing_hz, turn_repeat, *, noise_power)
 def _folds_onto_odd_orders(spacing_hz, *, prf_hz, dwell_s):
     """Whether a chopping comb at twice ``spacing_hz``, folded once, falls on the odd orders of the comb at it: the
     PRF lies within ``HANN_LOBE_BINS`` dwell-spectrum bins (``1 / dwell_s``) of an odd multiple M of ``spacing_hz``,
-    and its m-th line folds to ``(2 m - M)`` times it. Every second line of that comb standing out is then what equal
-    blades' chopping lines show over their own folded ones: four equal 2-blade rotors at 77 GHz, their tips folded
-    twice, the PRF 172.93 times their 135.5 Hz turn (1.5 bins from 173), stepped every second line of a comb at
-    135.5 Hz, and N = 2 was read as measured where the echo does not tell it (4 blades at half the rate look alike).
+    and its m-th line folds to ``(2 m - M)`` times it (:func:`_fold_multiples`). Every second line of that comb
+    standing out is then what equal blades' chopping lines show over their own folded ones: four equal 2-blade rotors
+    at 77 GHz, their tips folded twice, the PRF 172.93 times their 135.5 Hz turn (1.5 bins from 173), stepped every
+    second line of a comb at 135.5 Hz, and N = 2 was read as measured where the echo does not tell it (4 blades at
+    half the rate look alike).
     """
+    return 2 in _fold_multiples(spacing_hz, prf_hz=prf_hz, dwell_s=dwell_s, up_to=2)
+
+
+def _fold_multiples(spacing_hz, *, prf_hz, dwell_s, up_to):
+    """The whole multiples k (2 to ``up_to``) of ``spacing_hz`` whose comb, folded by the PRF, lands on every order of
+    the comb at it within ``HANN_LOBE_BINS`` dwell-spectrum bins (``1 / dwell_s``): k prime to the whole number M
+    nearest the PRF over the spacing. The comb at ``k f`` folded n times lies at ``(k m - n M) f``, off the grid by n
+    times the PRF's offset from ``M f``; its approaching and receding lines folded n times fill the residues ``-n M``
+    and ``n M`` mod k, every order once n reaches ``k // 2`` (k prime to M: an odd M, k = 2 or 3: once; M = 26, k = 3:
+    the orders of 1 and 2 mod 3, once), and the echo shows one comb at f for either. A k sharing a factor d with M
+    fills only the multiples of ``d f``, and the comb reads that. Empty where the PRF is off every multiple."""
     ratio = prf_hz / spacing_hz
-    nearest_odd = 2 * np.floor(ratio / 2) + 1
-    return bool(abs(ratio - nearest_odd) * spacing_hz * dwell_s < HANN_LOBE_BINS)
+    nearest = int(round(ratio))
+    offset_bins = abs(ratio - nearest) * spacing_hz * dwell_s
+    if nearest < 2:
+        return ()
+    return tuple(k for k in range(2, int(up_to) + 1)
+                 if math.gcd(k, nearest) == 1 and (k // 2) * offset_bins < HANN_LOBE_BINS)
 
 
 def _pattern_on_rotors_apart(lines, spacing_hz, pattern, *, band_hz):
@@ -1982,7 +2019,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
 
     tip, length, edges = lengths(turn)
     folded = turn if turn is not as_read else _folded_unseen(  # (read on the ramp's parts: no shorter flash period)
-        turn, aliased=band.aliased, tips_seen=edges is not None, prf_hz=prf_hz, wavelength_m=wavelength_m,
+        turn, aliased=band.aliased, tips_seen=_tips_inside_span(edges, prf_hz=prf_hz), prf_hz=prf_hz,
+        wavelength_m=wavelength_m,
         elevation_deg=params.elevation_deg, dwell_s=dwell_s)
     if folded is not turn:
         turn = folded
