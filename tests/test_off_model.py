@@ -1746,13 +1746,28 @@ def test_a_chopping_comb_folds_onto_odd_orders_near_an_odd_multiple(prf_hz, fold
 def test_a_comb_folds_onto_every_order_of_a_comb_k_times_finer_for_k_prime_to_the_prf_multiple(prf_hz, multiples):
     """A comb at 100 Hz seen 1 s (1 Hz bins), multiples up to 7: a comb at k times it folded n times lies at (k m - n
     M) 100 Hz, M = PRF / 100 Hz, n times the PRF's offset from M 100 Hz off the grid; for k prime to M its lines fill
-    every order once n reaches k // 2."""
+    every order once n reaches k // 2. The same multiples found by folding each comb's lines, both signs, and keeping
+    those that land within the Hann main lobe (2 bins) of an order of the comb at 100 Hz."""
     from mdpipe.process.features import _fold_multiples
     assert _fold_multiples(100.0, prf_hz=prf_hz, dwell_s=1.0, up_to=7) == multiples
-    # the arithmetic itself: the comb at 3 x 100 Hz folded by 2600 Hz, its lines up to 4 folds, lands on every order
-    lines_hz = np.concatenate([3 * 100.0 * np.arange(1, 40), -3 * 100.0 * np.arange(1, 40)])
-    folded = np.round((lines_hz + 1300.0) % 2600.0 - 1300.0)
-    assert set(np.round(folded / 100.0) % 26) == set(range(26))
+    assert folded_onto_every_order(100.0, prf_hz=prf_hz, lobe_hz=2.0, up_to=7) == multiples
+
+
+def folded_onto_every_order(spacing_hz, *, prf_hz, lobe_hz, up_to):
+    """The multiples k (2 to ``up_to``) of ``spacing_hz`` whose comb's lines folded into +-PRF / 2 at most k // 2
+    times land within ``lobe_hz`` of every order of the comb at ``spacing_hz`` inside that span (by brute force)."""
+    orders = set(range(1 - int(prf_hz / 2 / spacing_hz), int(prf_hz / 2 / spacing_hz)))
+    found = []
+    for k in range(2, up_to + 1):
+        reach = int((k // 2 + 1) * prf_hz / spacing_hz)
+        lines_hz = k * spacing_hz * np.arange(-reach, reach + 1)
+        lines_hz = lines_hz[np.abs(np.round(lines_hz / prf_hz)) <= k // 2]
+        folded_hz = lines_hz - np.round(lines_hz / prf_hz) * prf_hz
+        nearest = np.round(folded_hz / spacing_hz)
+        landed = set(nearest[np.abs(folded_hz - nearest * spacing_hz) < lobe_hz].astype(int))
+        if orders <= landed:
+            found.append(k)
+    return tuple(found)
 
 
 def test_a_bird_whose_power_ripples_between_slow_swells_has_no_flash_times(tmp_path):
@@ -2052,7 +2067,7 @@ def test_a_comb_the_prf_folds_tips_onto_at_its_odd_orders_gives_no_rate_where_th
 
 def test_a_comb_the_prf_folds_a_three_times_finer_chopping_onto_gives_no_rate(tmp_path):
     """Scene 167 of the low-PRF sweep drawn at seed 558: an X-band quadrotor of 3-blade rotors (8.9 cm, 16 points
-    each) at 65.7-66.5 rev/s, chopping at 197.8 Hz, its tips at 37 m/s, at a PRF of 1.72 kHz: a span of +-13.0 m/s.
+    each) at 65.7-66.5 rev/s, chopping at 197.8 Hz, its tips at 37 m/s, at a PRF of 1.72 kHz: a span of +-13.1 m/s.
     The PRF lay 1.6 bins from 26 times 66.1 Hz; 26 is even, so a comb at twice it folds onto the even orders only,
     but one at 3 times it (the chopping) folds once onto the orders of 1 and 2 mod 3: its lines filled a comb at a
     third of the chopping, read `ok` with N = 3 given (22 rev/s, a third of the truth). The comb's spacing is kept
@@ -2073,7 +2088,7 @@ def test_a_comb_the_prf_folds_a_three_times_finer_chopping_onto_gives_no_rate(tm
     assert row["chopping_freq_hz"] == pytest.approx(197.8 / 3, rel=0.01)  # a third of the truth: not stood behind
     assert row["chopping_freq_hz_status"] == "ambiguous_period"
     assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == "ambiguous_period"
-    assert "chopping frequency 66.1 Hz, or 198.3 Hz (3 times it)" in row["notes"]
+    assert "chopping frequency 66.1 Hz, or 198.3 Hz," in row["notes"]
 
 
 def test_flash_edges_at_the_span_ends_tell_no_tips_seen_inside_it(tmp_path):
@@ -2102,7 +2117,7 @@ def test_flash_edges_at_the_span_ends_tell_no_tips_seen_inside_it(tmp_path):
     assert row["chopping_freq_hz"] == pytest.approx(266.7 / 2, rel=0.01)  # half the truth: not stood behind
     assert row["chopping_freq_hz_status"] == "ambiguous_period"
     assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == "ambiguous_period"
-    assert "chopping frequency 133.2 Hz, or 266.4 or 399.6 Hz (twice or 3 times it)" in row["notes"]
+    assert "chopping frequency 133.2 Hz, or 266.4 or 399.6 Hz," in row["notes"]
 
 
 @pytest.mark.parametrize("edges_hz, inside", [
@@ -2112,6 +2127,7 @@ def test_flash_edges_at_the_span_ends_tell_no_tips_seen_inside_it(tmp_path):
     ((-380.0, 300.0), False),
     ((-374.0, 374.0), True)])     # just under three quarters
 def test_flash_edges_show_tips_inside_the_span_only_short_of_its_ends(edges_hz, inside):
+    """Folded tips fill the span to its ends: edges read there (0.75 of the half-span and beyond) are the span's."""
     from mdpipe.process.features import _tips_inside_span
     assert _tips_inside_span(edges_hz, prf_hz=1000.0) is inside
 
@@ -2129,7 +2145,7 @@ def test_flash_edges_show_tips_inside_the_span_only_short_of_its_ends(edges_hz, 
     (False, False, 4011.0, 0.0306, 3.0, True),     # within the tilt of edge-on: the tips' full 150 m/s
     (False, False, 4011.0, 0.0306, None, True),    # elevation not given: taken edge-on
     (False, False, 2979.6, 0.0306, 14.6, True),    # 26.0 times: a comb at 3 times 114.6 Hz folds onto it
-    (False, False, 2750.4, 0.0306, 14.6, False)])  # 24.0 times (2 2 2 3): 5 times it would fold twice
+    (False, False, 2750.4, 0.0306, 14.6, False)])  # 24.0 times = 2 2 2 3: neither 2 nor 3 is prime to it
 def test_a_chopping_read_unaliased_on_an_odd_fold_is_withheld_only_where_the_span_could_hide_tips(
         aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, held):
     from mdpipe.process.features import Measured, Rotation, _folded_unseen
@@ -2139,10 +2155,26 @@ def test_a_chopping_read_unaliased_on_an_odd_fold_is_withheld_only_where_the_spa
     assert (result is turn) is not held
     if held:  # the comb's spacing kept, not stood behind; the rate withheld; the blade count as given
         assert result.chopping.value == 114.6 and result.chopping.status == "ambiguous_period"
-        others = {35: "229.2 or 343.8 Hz (twice or 3 times it)", 26: "343.8 Hz (3 times it)"}[round(prf_hz / 114.6)]
+        others = {35: "229.2 or 343.8 Hz,", 26: "343.8 Hz,"}[round(prf_hz / 114.6)]
         assert f"chopping frequency 114.6 Hz, or {others}" in result.chopping.note
         assert result.rate.value is None and result.rate.status == "ambiguous_period"
         assert (result.n_blades, result.n_blades_source) == (2, "given")
+
+
+@pytest.mark.parametrize("chopping_hz, others", [(1200.0, "2400 Hz,"), (1600.0, None)])
+def test_a_chopping_on_a_fold_is_doubted_only_for_multiples_a_rotor_can_chop_at(chopping_hz, others):
+    """The PRF 7.0 times the chopping (M = 7: 2 and 3 prime to it), a span of +-(0.0306 7 f / 4) m/s under 150: at
+    1200 Hz twice it (2400 Hz) is a chopping a rotor may have, 3 times (3600 Hz) over 6 blades at 500 rev/s is not; at
+    1600 Hz neither."""
+    from mdpipe.process.features import Measured, Rotation, _folded_unseen
+    turn = Rotation(Measured(chopping_hz), Measured(chopping_hz / 2), (chopping_hz / 2,), 2, "given")
+    result = _folded_unseen(turn, aliased=False, tips_seen=False, prf_hz=7 * chopping_hz, wavelength_m=0.0306,
+                            elevation_deg=None, dwell_s=0.5)
+    if others is None:
+        assert result is turn
+    else:
+        assert result.chopping.status == "ambiguous_period"
+        assert f"chopping frequency {chopping_hz:.4g} Hz, or {others}" in result.chopping.note
 
 
 def test_a_drone_whose_flashes_land_in_its_range_flanks_is_read_a_drone(tmp_path):

@@ -66,6 +66,7 @@ DRIFTING_REPEAT = 0.6        # rotors at one rate repeat their echo each turn as
                              # signal's power); under this share they drift through each other's phases
 HANN_LOBE_BINS = MAIN_LOBE_BINS["hann"]  # a line reaches this many bins either side of it (a Hann window's main lobe)
 ONCE_FOLDED_MULTIPLES = 3    # a comb at k f folded once fills every order of the comb at f for k up to this
+TIPS_INSIDE_SHARE = 0.75     # flash edges within this share of the half-span are tips inside it (else its ends)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 WIDE_BAND_SHARE = 0.75       # an unaliased band over this share of the span decorrelates within a chirp
 MAX_RAMP_DIVISOR = 6         # a power period not whole within the ramp: its halves to sixths are tried there
@@ -463,47 +464,50 @@ def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_
     the tips' Doppler edges inside the span (``tips_seen``: :func:`_tips_inside_span`), the span (``lambda PRF / 4``)
     holds no tips of the fastest rotor (``rotor.MAX_ROTOR_TIP_MPS``, seen at the elevation given, its disc tilted
     ``ROTOR_TILT_DEG`` towards edge-on; else edge-on), and the PRF lies within the Hann main lobe of a whole multiple
-    M of it with k = 2 or 3 prime to M (``ONCE_FOLDED_MULTIPLES``, :func:`_fold_multiples`).
+    M of it with k = 2 or 3 prime to M (``ONCE_FOLDED_MULTIPLES``, :func:`_fold_multiples`; k times it no faster than
+    ``combs.MAX_CHOP_HZ``).
     Tips folded once, too faint to light the dwell's band out to the span's ends, then put k times that chopping's
-    lines on the orders of a comb at it that k's own lines leave: the echo shows the same comb, and the same period,
-    for either. (A comb at 5 times or more fills them only folded twice or more, by tips that light the span's ends:
-    where M is a multiple of 6 three right readings at X and 77 GHz lay within the lobe, and none wrong.) Three X-band drones at PRFs of 2.2-4.4 kHz (spans of 17-34 m/s), N = 2 given or not, were read at
-    half their chopping, `ok`, the PRF 0.11-0.28 bin from 35, 45 and 45 times the comb (a fourth, 2.9 bins from 17
-    times it, is not told); three right readings lay within the lobe too (0.9-1.7 bins: a 94 GHz hexarotor, an X-band
-    quadrotor, a 77 GHz one seen from 81 deg). Two X-band quadrotors of 3-blade rotors at PRFs of 1.7 and 1.8 kHz were
-    read at a third, the PRF 1.2 and 1.6 bins from 26 times the comb (k = 2 shares M's factor; k = 3 does not), and an
-    X-band quadrotor at half, 0.3 bin from 13 times it, its flash edges read at 0.87 of the half-span: the span's
-    ends, not its tips. Of `make offmodel`'s scenes, three right readings at K and X band (PRFs of 9.4-20.9 kHz) lay
-    within the lobe with their flash edges read inside the span, their blade lengths given: tips seen inside the span
-    do not fold."""
+    lines on the orders of a comb at it that k's own lines miss: the echo shows the same comb, and the same period,
+    for either. A comb at 4 times or more fills them only folded twice or more, by tips that light the span's ends
+    (where M was a multiple of 6, three right readings at X and 77 GHz lay within the lobe of k = 5, and none wrong).
+    Three X-band drones at PRFs of 2.2-4.4 kHz (spans of 17-34 m/s), N = 2 given or not, were read at half their
+    chopping, `ok`, the PRF 0.11-0.28 bin from 35, 45 and 45 times the comb (a fourth, 2.9 bins from 17 times it, is
+    not told); three right readings lay within the lobe too (0.9-1.7 bins: a 94 GHz hexarotor, an X-band quadrotor, a
+    77 GHz one seen from 81 deg). Two X-band quadrotors of 3-blade rotors at PRFs of 1.7 and 1.8 kHz were read at a
+    third, the PRF 1.2 and 1.6 bins from 26 times the comb (k = 2 shares M's factor; k = 3 does not), one of them and
+    an X-band quadrotor read at half, 0.3 bin from 13 times it, with flash edges at 0.90 and 0.91 of the half-span:
+    the span's ends, not tips (:func:`_tips_inside_span`); a K-band one read right lay 1.9 bins from 26 times its comb.
+    Of `make offmodel`'s scenes, three right readings at K and X band (PRFs of 9.4-20.9 kHz) lay within the lobe with
+    their flash edges read inside the span, their blade lengths given: tips seen inside the span do not fold."""
     chopping_hz = turn.chopping.value
     if aliased or tips_seen or chopping_hz is None:
         return turn
     seen_deg = 0.0 if elevation_deg is None else _disc_seen_deg(elevation_deg, towards_face_on=False)
     fastest_mps = rotor.MAX_ROTOR_TIP_MPS * np.cos(np.deg2rad(seen_deg))
     span_mps = wavelength_m * prf_hz / 4
-    multiples = _fold_multiples(chopping_hz, prf_hz=prf_hz, dwell_s=dwell_s,
-                                up_to=min(ONCE_FOLDED_MULTIPLES, combs.MAX_CHOP_HZ / chopping_hz))
+    multiples = [k for k in _fold_multiples(chopping_hz, prf_hz=prf_hz, dwell_s=dwell_s, up_to=ONCE_FOLDED_MULTIPLES)
+                 if k * chopping_hz <= combs.MAX_CHOP_HZ]
     if span_mps >= fastest_mps or not multiples:
         return turn
     others = " or ".join(f"{k * chopping_hz:.4g}" for k in multiples)
-    times = " or ".join("twice" if k == 2 else f"{k} times" for k in multiples)
-    note = (f"chopping frequency {chopping_hz:.4g} Hz, or {others} Hz ({times} it), and rotation not estimable: the "
-            f"span reaches +-{span_mps:.3g} m/s, under the {fastest_mps:.3g} m/s a rotor's tips may, and the PRF lies "
-            f"within {HANN_LOBE_BINS:g} bins of {prf_hz / chopping_hz:.0f} times it: tips folded once, unseen, would "
-            f"put such a chopping's lines on the orders of its comb that its own leave (another PRF tells which)")
+    note = (f"chopping frequency {chopping_hz:.4g} Hz, or {others} Hz, and rotation not estimable: the span reaches "
+            f"+-{span_mps:.3g} m/s, under the {fastest_mps:.3g} m/s a rotor's tips may, and the PRF lies within "
+            f"{HANN_LOBE_BINS:g} bins of {round(prf_hz / chopping_hz)} times it: tips folded once, unseen, would put "
+            f"the lines of a chopping {' or '.join(str(k) for k in multiples)} times faster on the orders of the "
+            f"{chopping_hz:.4g} Hz comb that its own lines miss (another PRF tells which)")
     return replace(turn, chopping=Measured(chopping_hz, "ambiguous_period", note),
                    rate=withheld("ambiguous_period", note), rotor_rates_hz=())
 
 
-def _tips_inside_span(edges, *, prf_hz):
+def _tips_inside_span(edges_hz, *, prf_hz):
     """Whether a flash's Doppler edges (``(low_hz, high_hz)`` about the body line, or None: none read,
-    :func:`blade_length`) show blade tips inside the span: both within ``WIDE_BAND_SHARE`` of its half (``PRF / 2``).
-    Tips beyond the span fold and fill it to its ends, where edges then read the span's, not the tips'. Two X-band
-    quadrotors read at a half and a third of their chopping, their tips at 37 and 123 m/s over spans of +-13 m/s,
-    showed edges at 0.87 and 0.90 of the half-span (read over 3.5-3.6 Doppler bins a side, `few_harmonics`); right
-    readings whose tips lay inside the span, at 0.37 (a 94 GHz quadrotor's 40 m/s, at 7.4 bins a side)."""
-    return edges is not None and max(abs(edge_hz) for edge_hz in edges) < WIDE_BAND_SHARE * prf_hz / 2
+    :func:`blade_length`) show blade tips inside the span: both within ``TIPS_INSIDE_SHARE`` of its half
+    (``PRF / 2``). Tips beyond the span fold and fill it to its ends, where edges then read the span's, not the tips'.
+    Two X-band quadrotors read at a third and a half of their chopping, their tips at 34 and 123 m/s over spans of
+    +-13.8 and +-13.1 m/s, showed edges out to 0.90 and 0.91 of the half-span (over 3.5-3.6 Doppler bins a side,
+    `few_harmonics`); two read right, a 77 GHz and an X-band quadrotor, out to 0.32 and 0.37 (`few_harmonics` too:
+    a blurred edge is no sign of folded tips)."""
+    return edges_hz is not None and max(abs(edge_hz) for edge_hz in edges_hz) < TIPS_INSIDE_SHARE * prf_hz / 2
 
 
 def _flashes_between(turn, ramp, *, prf_hz):
@@ -1585,14 +1589,14 @@ def _fold_multiples(spacing_hz, *, prf_hz, dwell_s, up_to):
     the comb at it within ``HANN_LOBE_BINS`` dwell-spectrum bins (``1 / dwell_s``): k prime to the whole number M
     nearest the PRF over the spacing. The comb at ``k f`` folded n times lies at ``(k m - n M) f``, off the grid by n
     times the PRF's offset from ``M f``; its approaching and receding lines folded n times fill the residues ``-n M``
-    and ``n M`` mod k, every order once n reaches ``k // 2`` (k prime to M: an odd M, k = 2 or 3: once; M = 26, k = 3:
-    the orders of 1 and 2 mod 3, once), and the echo shows one comb at f for either. A k sharing a factor d with M
-    fills only the multiples of ``d f``, and the comb reads that. Empty where the PRF is off every multiple."""
+    and ``n M`` mod k, every order once n reaches ``k // 2`` (k = 2 or 3 prime to M: once; M = 26, k = 3: the orders
+    of 1 and 2 mod 3), and the echo shows one comb at f for either. A k sharing a factor d with M fills only the
+    multiples of ``d f``, and the comb reads that. Empty where the PRF is off every multiple."""
     ratio = prf_hz / spacing_hz
+    if not (np.isfinite(ratio) and ratio >= 1.5):  # (M = 1: a spacing over half the PRF is read on no comb)
+        return ()
     nearest = int(round(ratio))
     offset_bins = abs(ratio - nearest) * spacing_hz * dwell_s
-    if nearest < 2:
-        return ()
     return tuple(k for k in range(2, int(up_to) + 1)
                  if math.gcd(k, nearest) == 1 and (k // 2) * offset_bins < HANN_LOBE_BINS)
 
@@ -2020,8 +2024,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
     tip, length, edges = lengths(turn)
     folded = turn if turn is not as_read else _folded_unseen(  # (read on the ramp's parts: no shorter flash period)
         turn, aliased=band.aliased, tips_seen=_tips_inside_span(edges, prf_hz=prf_hz), prf_hz=prf_hz,
-        wavelength_m=wavelength_m,
-        elevation_deg=params.elevation_deg, dwell_s=dwell_s)
+        wavelength_m=wavelength_m, elevation_deg=params.elevation_deg, dwell_s=dwell_s)
     if folded is not turn:
         turn = folded
         tip, length, edges = lengths(turn)  # (no rate: none)
