@@ -2091,47 +2091,6 @@ def test_a_comb_the_prf_folds_a_three_times_finer_chopping_onto_gives_no_rate(tm
     assert "chopping frequency 66.1 Hz, or 198.3 Hz," in row["notes"]
 
 
-def test_flash_edges_at_the_span_ends_tell_no_tips_seen_inside_it(tmp_path):
-    """Scene 81 of the low-PRF sweep drawn at seed 558: an X-band quadrotor of 2-blade rotors (14.7 cm, 8 points
-    each) at 133.1-133.6 rev/s, chopping at 266.7 Hz, its tips at 123 m/s (68 m/s seen from 56 deg), at a PRF of
-    1.73 kHz: a span of +-13.1 m/s. The PRF lay 0.3 bin from 13 times 133.2 Hz, and the comb at the chopping folded
-    onto the odd orders of one at half it, read `ok` (N = 2 assumed): flash edges read at +-750 Hz, 0.87 of the
-    866 Hz half-span, had counted as tips seen inside the span. Folded tips fill the span to its ends: the comb's
-    spacing kept as ambiguous, no rate."""
-    radar = dict(f_start_hz=9.8e9, f_stop_hz=10.05e9, ramp_up_s=0.000462046, chirp_period_s=0.000577557,
-                 sample_rate_hz=138514.34719486805, n_samples=64, n_chirps=2048, n_channels=2)
-    quad = {"name": "quadrotor_xband", "type": "multirotor", "elevation_deg": 56.2147, "body_rcs_m2": 0.026051,
-            "motion": {"position_m": [4.74283, 3.74892, 9.39926], "velocity_mps": [-3.44201, -3.82207, 0.0],
-                       "sway_amplitude_m": [0.161878, 0.0734398, 0.0161003], "sway_period_s": 2.52997},
-            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 8, "root_m": 0.01,
-                       "phase_deg": [29.9264, 56.2374, 244.938, 96.5697], "blade_rcs_m2": 0.0069101,
-                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 2.64326,
-                       "tilt_deg": [-1.78197, -3.95963, 1.09457, 1.24569], "blades": 2, "arm_m": 0.122243,
-                       "blade_length_m": 0.147442, "rev_per_s": [133.621, -133.562, 133.064, -133.07]}}
-    clutter = [{"type": "static", "name": f"clutter{i}", "range_m": 16.3087, "azimuth_deg": azimuth_deg, "rcs_m2": rcs}
-               for i, (azimuth_deg, rcs) in enumerate([(34.9868, 0.163279), (20.4079, 0.505361), (5.1397, 0.317943)])]
-    row = sweep_row(tmp_path, radar, quad, moving_snr_db=12.9421, seed=1932913031, clutter=clutter,
-                    elevation_deg=56.2147)
-    assert row["class"] == "drone" and not row["aliased"]
-    assert row["blade_length_m_status"] == "no_rotation"  # (few_harmonics before: the edges' 3.5 bins a side)
-    assert row["chopping_freq_hz"] == pytest.approx(266.7 / 2, rel=0.01)  # half the truth: not stood behind
-    assert row["chopping_freq_hz_status"] == "ambiguous_period"
-    assert row["rotation_rate_hz"] is None and row["rotation_rate_hz_status"] == "ambiguous_period"
-    assert "chopping frequency 133.2 Hz, or 266.4 or 399.6 Hz," in row["notes"]
-
-
-@pytest.mark.parametrize("edges_hz, inside", [
-    (None, False),                # no flash with both edges read
-    ((-300.0, 320.0), True),      # within 0.64 of the 500 Hz half-span
-    ((-300.0, 380.0), False),     # one edge at 0.76 of it: the span's end, where folded tips reach
-    ((-380.0, 300.0), False),
-    ((-374.0, 374.0), True)])     # just under three quarters
-def test_flash_edges_show_tips_inside_the_span_only_short_of_its_ends(edges_hz, inside):
-    """Folded tips fill the span to its ends: edges read there (0.75 of the half-span and beyond) are the span's."""
-    from mdpipe.process.features import _tips_inside_span
-    assert _tips_inside_span(edges_hz, prf_hz=1000.0) is inside
-
-
 @pytest.mark.parametrize("aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, held", [
     (False, False, 4011.0, 0.0306, 14.6, True),    # PRF 35.0 times 114.6 Hz: a span of +-30.7 m/s may hide tips
     (True, False, 4011.0, 0.0306, 14.6, False),    # read aliased: the folded-comb tests apply instead

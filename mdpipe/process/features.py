@@ -66,7 +66,6 @@ DRIFTING_REPEAT = 0.6        # rotors at one rate repeat their echo each turn as
                              # signal's power); under this share they drift through each other's phases
 HANN_LOBE_BINS = MAIN_LOBE_BINS["hann"]  # a line reaches this many bins either side of it (a Hann window's main lobe)
 ONCE_FOLDED_MULTIPLES = 3    # a comb at k f folded once fills every order of the comb at f for k up to this
-TIPS_INSIDE_SHARE = 0.75     # flash edges within this share of the half-span are tips inside it (else its ends)
 AGREEMENT = 0.02             # comb and time-domain chopping frequencies agree within 2 %
 WIDE_BAND_SHARE = 0.75       # an unaliased band over this share of the span decorrelates within a chirp
 MAX_RAMP_DIVISOR = 6         # a power period not whole within the ramp: its halves to sixths are tried there
@@ -461,11 +460,11 @@ def _undersampled(turn, why):
 def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, dwell_s):
     """``turn`` (a :class:`Rotation`), its chopping frequency kept as ``ambiguous_period`` (it or a whole multiple; the
     blade count as it was; the rate withheld) where it was read in a band that shows no aliasing, no flash showed both
-    the tips' Doppler edges inside the span (``tips_seen``: :func:`_tips_inside_span`), the span (``lambda PRF / 4``)
-    holds no tips of the fastest rotor (``rotor.MAX_ROTOR_TIP_MPS``, seen at the elevation given, its disc tilted
-    ``ROTOR_TILT_DEG`` towards edge-on; else edge-on), and the PRF lies within the Hann main lobe of a whole multiple
-    M of it with k = 2 or 3 prime to M (``ONCE_FOLDED_MULTIPLES``, :func:`_fold_multiples`; k times it no faster than
-    ``combs.MAX_CHOP_HZ``).
+    the tips' Doppler edges inside the span (``tips_seen``: the blade length's reading, :func:`blade_length`, got
+    them), the span (``lambda PRF / 4``) holds no tips of the fastest rotor (``rotor.MAX_ROTOR_TIP_MPS``, seen at the
+    elevation given, its disc tilted ``ROTOR_TILT_DEG`` towards edge-on; else edge-on), and the PRF lies within the
+    Hann main lobe of a whole multiple M of it with k = 2 or 3 prime to M (``ONCE_FOLDED_MULTIPLES``,
+    :func:`_fold_multiples`; k times it no faster than ``combs.MAX_CHOP_HZ``).
     Tips folded once, too faint to light the dwell's band out to the span's ends, then put k times that chopping's
     lines on the orders of a comb at it that k's own lines miss: the echo shows the same comb, and the same period,
     for either. A comb at 4 times or more fills them only folded twice or more, by tips that light the span's ends
@@ -473,12 +472,14 @@ def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_
     Three X-band drones at PRFs of 2.2-4.4 kHz (spans of 17-34 m/s), N = 2 given or not, were read at half their
     chopping, `ok`, the PRF 0.11-0.28 bin from 35, 45 and 45 times the comb (a fourth, 2.9 bins from 17 times it, is
     not told); three right readings lay within the lobe too (0.9-1.7 bins: a 94 GHz hexarotor, an X-band quadrotor, a
-    77 GHz one seen from 81 deg). Two X-band quadrotors of 3-blade rotors at PRFs of 1.7 and 1.8 kHz were read at a
-    third, the PRF 1.2 and 1.6 bins from 26 times the comb (k = 2 shares M's factor; k = 3 does not), one of them and
-    an X-band quadrotor read at half, 0.3 bin from 13 times it, with flash edges at 0.90 and 0.91 of the half-span:
-    the span's ends, not tips (:func:`_tips_inside_span`); a K-band one read right lay 1.9 bins from 26 times its comb.
-    Of `make offmodel`'s scenes, three right readings at K and X band (PRFs of 9.4-20.9 kHz) lay within the lobe with
-    their flash edges read inside the span, their blade lengths given: tips seen inside the span do not fold."""
+    77 GHz one seen from 81 deg). Two X-band quadrotors of 3-blade rotors at PRFs of 1.8 and 1.7 kHz were read at a
+    third, the PRF 1.2 and 1.6 bins from 26 times the comb (k = 2 shares M's factor; k = 3 does not); the second is
+    told, the first not (its flash edges read inside the span, at 0.90 of its half, blurred over 3.6 Doppler bins a
+    side); a K-band 3-blade one read right lay 1.9 bins from 26 times its comb. Of `make offmodel`'s scenes, three
+    right readings at K and X band (PRFs of 9.4-20.9 kHz) lay within the lobe with their flash edges read inside the
+    span, their blade lengths given: tips seen inside the span do not fold. (Edges read out to 0.75 of the half-span
+    and beyond are no sign of folded tips either way: those three, and three right readings at low PRF with edges at
+    0.93-0.96, read them there as two wrong ones at 0.90-0.91 did.)"""
     chopping_hz = turn.chopping.value
     if aliased or tips_seen or chopping_hz is None:
         return turn
@@ -497,17 +498,6 @@ def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_
             f"{chopping_hz:.4g} Hz comb that its own lines miss (another PRF tells which)")
     return replace(turn, chopping=Measured(chopping_hz, "ambiguous_period", note),
                    rate=withheld("ambiguous_period", note), rotor_rates_hz=())
-
-
-def _tips_inside_span(edges_hz, *, prf_hz):
-    """Whether a flash's Doppler edges (``(low_hz, high_hz)`` about the body line, or None: none read,
-    :func:`blade_length`) show blade tips inside the span: both within ``TIPS_INSIDE_SHARE`` of its half
-    (``PRF / 2``). Tips beyond the span fold and fill it to its ends, where edges then read the span's, not the tips'.
-    Two X-band quadrotors read at a third and a half of their chopping, their tips at 34 and 123 m/s over spans of
-    +-13.8 and +-13.1 m/s, showed edges out to 0.90 and 0.91 of the half-span (over 3.5-3.6 Doppler bins a side,
-    `few_harmonics`); two read right, a 77 GHz and an X-band quadrotor, out to 0.32 and 0.37 (`few_harmonics` too:
-    a blurred edge is no sign of folded tips)."""
-    return edges_hz is not None and max(abs(edge_hz) for edge_hz in edges_hz) < TIPS_INSIDE_SHARE * prf_hz / 2
 
 
 def _flashes_between(turn, ramp, *, prf_hz):
@@ -2023,8 +2013,8 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
 
     tip, length, edges = lengths(turn)
     folded = turn if turn is not as_read else _folded_unseen(  # (read on the ramp's parts: no shorter flash period)
-        turn, aliased=band.aliased, tips_seen=_tips_inside_span(edges, prf_hz=prf_hz), prf_hz=prf_hz,
-        wavelength_m=wavelength_m, elevation_deg=params.elevation_deg, dwell_s=dwell_s)
+        turn, aliased=band.aliased, tips_seen=edges is not None, prf_hz=prf_hz, wavelength_m=wavelength_m,
+        elevation_deg=params.elevation_deg, dwell_s=dwell_s)
     if folded is not turn:
         turn = folded
         tip, length, edges = lengths(turn)  # (no rate: none)
