@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-lowprf evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades offmodel-cw offmodel-cw-hum readme clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-lowprf evaluate-heldout-lowprf-fresh evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades offmodel-cw offmodel-cw-hum readme clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -94,6 +94,13 @@ evaluate-heldout-lowprf: $(MDPIPE)
 	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --seed 556 --out out/evaluate_heldout_lowprf_556 -j 2
 	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --seed 557 --out out/evaluate_heldout_lowprf_557 -j 2
 	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --seed 558 --out out/evaluate_heldout_lowprf_558 -j 2
+
+# The low-PRF sweep at six more seeds, drawn after every rule (~15 min): a rule's check on draws it did not come from
+evaluate-heldout-lowprf-fresh: $(MDPIPE)
+	for seed in 561 562 563 564 565 566; do \
+		$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --seed $$seed --out out/evaluate_heldout_lowprf_$$seed -j 2 \
+			|| exit 1; \
+	done
 
 # The held-out bird sweep: the default sweep's birds at a counter-drone radar's PRF and dwell (~2 min)
 evaluate-heldout-birds: $(MDPIPE)
