@@ -87,8 +87,8 @@ evaluate-fresh: $(MDPIPE)
 evaluate-heldout: $(MDPIPE)
 	$(MDPIPE) evaluate configs/sweeps/heldout_drones.yaml --out out/evaluate_heldout -j 2
 
-# The low-PRF sweep: the drone families at PRFs of 1.5-6 kHz, their tips folded many times, at the three seeds rules
-# came from and at one drawn after them (~2 min each)
+# The low-PRF sweep: the drone families at PRFs of 1.5-6 kHz, their tips folded many times, at the four seeds rules
+# came from, 558 drawn after the other three's (~2 min each)
 evaluate-heldout-lowprf: $(MDPIPE)
 	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --out out/evaluate_heldout_lowprf -j 2
 	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --seed 556 --out out/evaluate_heldout_lowprf_556 -j 2

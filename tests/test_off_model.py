@@ -3,6 +3,7 @@ a blade count given wrongly. Each asserts the physics' number or a named status,
 """
 
 import functools
+import math
 from pathlib import Path
 
 import numpy as np
@@ -35,6 +36,26 @@ def sweep_row(tmp_path, radar, target, *, moving_snr_db, seed, clutter=(), **par
     path, _ = simulate(tmp_path, scene_mapping(radar, [target, *clutter], noise={"moving_snr_db": moving_snr_db},
                                                seed=seed))
     return process_capture(path, ProcessParams(**params)).rows[0]
+
+
+def folded_onto_every_order(spacing_hz, *, prf_hz, lobe_hz, up_to):
+    """The multiples k (2 to ``up_to``) of ``spacing_hz`` whose comb's lines folded into +-PRF / 2 at most k // 2
+    times land within ``lobe_hz`` of every order of the comb at ``spacing_hz`` inside that span (by brute force)."""
+    within = math.ceil(prf_hz / 2 / spacing_hz)  # orders strictly inside the span
+    if within < 2:
+        return ()  # no order but 0 inside the span: no comb
+    orders = set(range(1 - within, within))
+    found = []
+    for k in range(2, up_to + 1):
+        reach = int((k // 2 + 1) * prf_hz / spacing_hz)
+        lines_hz = k * spacing_hz * np.arange(-reach, reach + 1)
+        lines_hz = lines_hz[np.abs(np.round(lines_hz / prf_hz)) <= k // 2]
+        folded_hz = lines_hz - np.round(lines_hz / prf_hz) * prf_hz
+        nearest = np.round(folded_hz / spacing_hz)
+        landed = set(nearest[np.abs(folded_hz - nearest * spacing_hz) < lobe_hz].astype(int))
+        if orders <= landed:
+            found.append(k)
+    return tuple(found)
 
 
 def assert_wingbeat(row, wingbeat_hz, *, rel):
@@ -1741,8 +1762,10 @@ def test_a_chopping_comb_folds_onto_odd_orders_near_an_odd_multiple(prf_hz, fold
     (1300.0, (2, 3, 4, 5, 6, 7)),  # M = 13, prime: every k
     (3000.0, (7,)),           # M = 30 = 2 3 5: only 7, its orders filled after three folds
     (2601.5, (3,)),           # 1.5 bins off 26 times: once folded, k = 3, within the lobe; k = 5, folded twice, not
+    (1301.5, (2, 3)),         # 1.5 bins off 13 times: k = 2 and 3 folded once; k = 4 and more, twice or more, not
     (2603.0, ()),             # 3 bins off: no fold lands within the main lobe
-    (2650.0, ())])            # 26.5 times: off every multiple
+    (2650.0, ()),             # 26.5 times: off every multiple
+    (100.0, ())])             # the PRF itself: no comb (M = 1)
 def test_a_comb_folds_onto_every_order_of_a_comb_k_times_finer_for_k_prime_to_the_prf_multiple(prf_hz, multiples):
     """A comb at 100 Hz seen 1 s (1 Hz bins), multiples up to 7: a comb at k times it folded n times lies at (k m - n
     M) 100 Hz, M = PRF / 100 Hz, n times the PRF's offset from M 100 Hz off the grid; for k prime to M its lines fill
@@ -1751,23 +1774,6 @@ def test_a_comb_folds_onto_every_order_of_a_comb_k_times_finer_for_k_prime_to_th
     from mdpipe.process.features import _fold_multiples
     assert _fold_multiples(100.0, prf_hz=prf_hz, dwell_s=1.0, up_to=7) == multiples
     assert folded_onto_every_order(100.0, prf_hz=prf_hz, lobe_hz=2.0, up_to=7) == multiples
-
-
-def folded_onto_every_order(spacing_hz, *, prf_hz, lobe_hz, up_to):
-    """The multiples k (2 to ``up_to``) of ``spacing_hz`` whose comb's lines folded into +-PRF / 2 at most k // 2
-    times land within ``lobe_hz`` of every order of the comb at ``spacing_hz`` inside that span (by brute force)."""
-    orders = set(range(1 - int(prf_hz / 2 / spacing_hz), int(prf_hz / 2 / spacing_hz)))
-    found = []
-    for k in range(2, up_to + 1):
-        reach = int((k // 2 + 1) * prf_hz / spacing_hz)
-        lines_hz = k * spacing_hz * np.arange(-reach, reach + 1)
-        lines_hz = lines_hz[np.abs(np.round(lines_hz / prf_hz)) <= k // 2]
-        folded_hz = lines_hz - np.round(lines_hz / prf_hz) * prf_hz
-        nearest = np.round(folded_hz / spacing_hz)
-        landed = set(nearest[np.abs(folded_hz - nearest * spacing_hz) < lobe_hz].astype(int))
-        if orders <= landed:
-            found.append(k)
-    return tuple(found)
 
 
 def test_a_bird_whose_power_ripples_between_slow_swells_has_no_flash_times(tmp_path):
@@ -2105,7 +2111,7 @@ def test_a_comb_the_prf_folds_a_three_times_finer_chopping_onto_gives_no_rate(tm
     (False, False, 4011.0, 0.0306, None, True),    # elevation not given: taken edge-on
     (False, False, 2979.6, 0.0306, 14.6, True),    # 26.0 times: a comb at 3 times 114.6 Hz folds onto it
     (False, False, 2750.4, 0.0306, 14.6, False)])  # 24.0 times = 2 2 2 3: neither 2 nor 3 is prime to it
-def test_a_chopping_read_unaliased_on_an_odd_fold_is_withheld_only_where_the_span_could_hide_tips(
+def test_a_chopping_read_unaliased_on_a_fold_is_withheld_only_where_the_span_could_hide_tips(
         aliased, tips_seen, prf_hz, wavelength_m, elevation_deg, held):
     from mdpipe.process.features import Measured, Rotation, _folded_unseen
     turn = Rotation(Measured(114.6), Measured(57.3), (57.3,), 2, "given")

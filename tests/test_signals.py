@@ -20,7 +20,7 @@ from mdpipe.report import tables
 SAMPLES = Path(__file__).resolve().parents[1] / "data_samples"
 MDPIPE = [sys.executable, "-c", "import sys; from mdpipe.cli import run; sys.argv[0] = 'mdpipe'; run()"]
 N_CAPTURES = 24  # ~0.15 s each: a run lasts a few seconds, long enough to be stopped within
-N_WAITING = 6    # for runs that are not stopped: enough for two runs on one OUT to overlap
+N_WAITING = 6    # for runs that are not stopped (two started at once overlap by their start-up alone)
 
 
 def captures_folder(tmp_path, n_captures):
@@ -154,6 +154,7 @@ def test_two_runs_on_one_out_at_once(few, tmp_path):
     runs = [start(few, out), start(few, out)]
     results = [run.communicate(timeout=120) for run in runs]
     assert [run.returncode for run in runs] == [0, 0], results
+    assert sum("waiting for it to finish" in stderr for _, stderr in results) == 1  # they overlapped: one waited
     processed = [int(re.search(r"captures: (\d+) processed", stdout).group(1)) for stdout, _ in results]
     assert sum(processed) == N_WAITING  # one after the other: each capture processed once
     assert len(assert_nothing_half_published(out)) == N_WAITING

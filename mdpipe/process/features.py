@@ -477,9 +477,9 @@ def _folded_unseen(turn, *, aliased, tips_seen, prf_hz, wavelength_m, elevation_
     told, the first not (its flash edges read inside the span, at 0.90 of its half, blurred over 3.6 Doppler bins a
     side); a K-band 3-blade one read right lay 1.9 bins from 26 times its comb. Of `make offmodel`'s scenes, three
     right readings at K and X band (PRFs of 9.4-20.9 kHz) lay within the lobe with their flash edges read inside the
-    span, their blade lengths given: tips seen inside the span do not fold. (Edges read out to 0.75 of the half-span
-    and beyond are no sign of folded tips either way: those three, and three right readings at low PRF with edges at
-    0.93-0.96, read them there as two wrong ones at 0.90-0.91 did.)"""
+    span, their blade lengths given: tips seen inside the span do not fold. (Tried, not kept: flash edges out to 0.75
+    of the half-span or beyond taken for the span's ends, not tips. Two wrong readings had them at 0.90-0.91, but
+    those three right ones and three right low-PRF readings, at 0.93-0.96, had them there too.)"""
     chopping_hz = turn.chopping.value
     if aliased or tips_seen or chopping_hz is None:
         return turn
@@ -1569,7 +1569,7 @@ def _folds_onto_odd_orders(spacing_hz, *, prf_hz, dwell_s):
     standing out is then what equal blades' chopping lines show over their own folded ones: four equal 2-blade rotors
     at 77 GHz, their tips folded twice, the PRF 172.93 times their 135.5 Hz turn (1.5 bins from 173), stepped every
     second line of a comb at 135.5 Hz, and N = 2 was read as measured where the echo does not tell it (4 blades at
-    half the rate look alike).
+    half the rate look alike). False for a spacing over PRF / 1.5 (M = 1: no comb).
     """
     return 2 in _fold_multiples(spacing_hz, prf_hz=prf_hz, dwell_s=dwell_s, up_to=2)
 
