@@ -18,10 +18,10 @@ from mdpipe.process import combs, doppler, mains, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import least_squares_line, moving_average, running_median, triangular_average
-from mdpipe.process.flashes import (RAMP_MIN_PERIOD_CHIRPS, RAMP_SETTLE_SHARE, PowerPeriod, flank_flash_period,
-                                    flash_period, on_chirp_grid, period_of_power, power_period, ramp_readable,
-                                    ramp_floor, ramp_repeat, ramp_repeats_whole, ramp_train, sides_alternate,
-                                    whole_ratio_apart)
+from mdpipe.process.flashes import (RAMP_MIN_PERIOD_CHIRPS, RAMP_SETTLE_SHARE, PowerPeriod, chirp_grid_drift,
+                                    flank_flash_period, flash_period, on_chirp_grid, period_of_power, power_period,
+                                    ramp_readable, ramp_floor, ramp_repeat, ramp_repeats_whole, ramp_train,
+                                    sides_alternate, whole_ratio_apart)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.ranging import MAIN_LOBE_BINS
 from mdpipe.process.validity import OK, Measured, withheld
@@ -1586,7 +1586,7 @@ def _fold_multiples(spacing_hz, *, prf_hz, dwell_s, up_to):
     if not (np.isfinite(ratio) and ratio >= 1.5):  # (M = 1: a spacing over half the PRF is read on no comb)
         return ()
     nearest = int(round(ratio))
-    offset_bins = abs(ratio - nearest) * spacing_hz * dwell_s
+    offset_bins = chirp_grid_drift(ratio, dwell_chirps=prf_hz * dwell_s)
     return tuple(k for k in range(2, int(up_to) + 1)
                  if math.gcd(k, nearest) == 1 and (k // 2) * offset_bins < HANN_LOBE_BINS)
 

@@ -503,7 +503,14 @@ def on_chirp_grid(period_chirps, *, dwell_chirps):
     """Whether a period of ``period_chirps`` drifts less than a chirp from a whole number of chirps over
     ``dwell_chirps``: flashes at it are held at the same places in the ramp (and a whole multiple of its rate folds
     onto it)."""
-    return abs(period_chirps - round(period_chirps)) * dwell_chirps / period_chirps <= 1.0
+    return chirp_grid_drift(period_chirps, dwell_chirps=dwell_chirps) <= 1.0
+
+
+def chirp_grid_drift(period_chirps, *, dwell_chirps):
+    """How far (chirps) a period of ``period_chirps`` drifts from the nearest whole number of chirps M over
+    ``dwell_chirps``: its offset from M times the periods the dwell holds. For a comb spacing f at PRF M f + e it is
+    also the offset e of the comb's M-th order from the PRF in dwell-spectrum bins (``e dwell_s``)."""
+    return abs(period_chirps - round(period_chirps)) * dwell_chirps / period_chirps
 
 
 def _sub_period_repeat(r, lag, divisor, *, locked=False):
