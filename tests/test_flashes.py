@@ -579,3 +579,86 @@ def test_flank_flashes_that_every_range_bin_holds_alike_are_no_drones(common_per
     turn = Rotation.withheld("no_flashes", "rotation not estimable: no periodic blade flashes")
     seen = _flashes_in_flanks(turn, lambda: Flanks(power, common), prf_hz=3000.0, mains_hz=())
     assert (seen.chopping.status == "ambiguous_period") is drone and (seen is turn) is not drone
+
+
+FOUR_ROTORS_CHIRPS = (7.05, 7.16, 7.27, 7.31)  # four rotors' flash periods, 0.6-3.7 % apart
+
+
+def _interleaved_flank(n, *, seed, flash=6.0, ramp_share=0.8, periods=FOUR_ROTORS_CHIRPS):
+    """A flank's power per chirp: unit exponential noise, and each rotor's flashes, every ``periods`` chirps from a
+    random start, caught where the ramp (its first ``ramp_share``) holds them, each of an exponential energy of mean
+    ``flash`` times the noise (where in the ramp a flash falls moves its energy across the flank's bins)."""
+    rng = np.random.default_rng(seed)
+    power = rng.exponential(1.0, n)
+    for period in periods:
+        for t in np.arange(rng.uniform(0, period), n, period):
+            if t - int(t) < ramp_share:
+                power[int(t)] += flash * rng.exponential(1.0)
+    return power
+
+
+def _near_a_multiple(f_hz, choppings_hz, *, prf_hz, most=6, rel=0.005):
+    """Whether ``f_hz`` lies within ``rel`` of a multiple (up to ``most``) of one of ``choppings_hz``, folded."""
+    return any(abs(abs((k * c + prf_hz / 2) % prf_hz - prf_hz / 2) - f_hz) <= rel * k * c
+               for c in choppings_hz for k in range(1, most + 1))
+
+
+def test_interleaved_rotors_on_both_flanks_share_a_line_where_their_power_shows_no_period():
+    """Four rotors' flash trains 0.6-3.7 % apart on both range flanks (1.6 kHz, 4096 chirps, noise and flash energies
+    drawn apart): their power's autocorrelation shows no period (:func:`flank_flash_period`), but both flanks'
+    spectra share a line within 0.5 % of a multiple of one rotor's chopping frequency, 219-227 Hz."""
+    from mdpipe.process.flashes import flank_flash_period, flank_line_hz
+    prf_hz = 1600.0
+    flanks = np.stack([_interleaved_flank(4096, seed=5), _interleaved_flank(4096, seed=6)], axis=1)
+    assert flank_flash_period(flanks, prf_hz=prf_hz, min_period_s=1 / 3000) is None
+    line_hz = flank_line_hz(flanks, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0)
+    assert line_hz is not None
+    assert _near_a_multiple(line_hz, [prf_hz / p for p in FOUR_ROTORS_CHIRPS], prf_hz=prf_hz)
+
+
+def test_a_line_on_one_flank_only_in_the_common_mode_at_half_the_prf_or_on_noise_is_no_flank_line():
+    """No shared line where: both flanks hold noise only (10 draws); one flank holds the rotors' flashes and the other
+    noise; what every range bin holds in common carries the same flashes (another radar's bursts, or a drone lighting
+    every bin); both flanks swell on alternate chirps (two transmitters in turn: a line at PRF / 2); both swell at a
+    wingbeat's pace (under ``min_hz``). The shared flashes, with a common mode of noise, are found."""
+    from mdpipe.process.flashes import flank_line_hz
+    prf_hz, n = 1600.0, 4096
+    rng = np.random.default_rng(11)
+
+    def line(power, common=None):
+        return flank_line_hz(power, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0, common=common)
+
+    for _ in range(10):
+        assert line(rng.exponential(1.0, (n, 2))) is None
+    flashes = _interleaved_flank(n, seed=5)
+    assert line(np.stack([flashes, rng.exponential(1.0, n)], axis=1)) is None
+    both = np.stack([flashes, _interleaved_flank(n, seed=6)], axis=1)
+    assert line(both, common=rng.exponential(1.0, n)) is not None
+    assert line(both, common=_interleaved_flank(n, seed=7)) is None
+    t = np.arange(n)
+    alternate = 1.0 + 0.5 * (t % 2)
+    assert line(rng.exponential(1.0, (n, 2)) * alternate[:, None] * 4) is None
+    swell = 1.0 + 0.8 * np.sin(2 * np.pi * 9.0 * t / prf_hz)
+    assert line(rng.exponential(0.1, (n, 2)) + swell[:, None]) is None
+
+
+def test_interleaved_rotors_in_the_flanks_are_a_drone_s_and_a_ripple_s_line_on_the_grid_is_not():
+    """Interleaved rotors on both flanks make the target's rotation ``ambiguous_period`` by their shared line (its
+    frequency in the note), under a 50-or-60 Hz grid too. Both flanks swelling at 100 Hz (a rectified supply's ripple
+    on the gain of the clutter about the target) share a line there: under that grid the rotation stays as the
+    target's own bin read it; told there is no grid, the line makes it a drone's."""
+    from mdpipe.process.features import Rotation, _flashes_in_flanks
+    from mdpipe.process.flashes import flank_line_hz
+    from mdpipe.process.ranging import Flanks
+    prf_hz, n = 1600.0, 4096
+    flanks = Flanks(np.stack([_interleaved_flank(n, seed=5), _interleaved_flank(n, seed=6)], axis=1))
+    turn = Rotation.withheld("no_flashes", "rotation not estimable: no periodic blade flashes")
+    seen = _flashes_in_flanks(turn, lambda: flanks, prf_hz=prf_hz, mains_hz=(50.0, 60.0))
+    assert seen.chopping.status == seen.rate.status == "ambiguous_period" and seen.rate.value is None
+    line_hz = flank_line_hz(flanks.power, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0)
+    assert f"shares a line at {line_hz:.4g} Hz" in seen.chopping.note
+    swell = 1.0 + 0.5 * np.sin(2 * np.pi * 100.0 * np.arange(n) / prf_hz)
+    ripple = Flanks(np.random.default_rng(3).exponential(1.0, (n, 2)) * swell[:, None])
+    assert _flashes_in_flanks(turn, lambda: ripple, prf_hz=prf_hz, mains_hz=(50.0, 60.0)) is turn
+    told = _flashes_in_flanks(turn, lambda: ripple, prf_hz=prf_hz, mains_hz=())
+    assert told.chopping.status == "ambiguous_period" and "shares a line at 100 Hz" in told.chopping.note

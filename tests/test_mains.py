@@ -168,3 +168,15 @@ def test_a_rotor_held_still_at_a_multiple_of_the_grid(tmp_path, rate_hz, prf_hz,
 def test_a_power_repeating_with_the_grid(period_s, mains_hz, repeats):
     from mdpipe.process.mains import repeats_with_grid
     assert repeats_with_grid(period_s, mains_hz) is repeats
+
+
+def test_a_power_line_lies_on_the_grid_at_its_first_harmonics_folded_by_the_prf():
+    """A line at 150 Hz lies on a 50 Hz grid's 3rd harmonic, within 3 times 1 % of it, not beyond; 20 Hz on a 60 Hz
+    grid's 4th, 240 Hz, folded by a PRF of 220 Hz; 250 Hz (the 5th) and 37 Hz on neither."""
+    from mdpipe.process.mains import line_on_grid
+    assert line_on_grid(150.0, (50.0,), prf_hz=3000.0)
+    assert line_on_grid(151.4, (50.0,), prf_hz=3000.0) and not line_on_grid(151.6, (50.0,), prf_hz=3000.0)
+    assert line_on_grid(20.0, (60.0,), prf_hz=220.0)
+    assert not line_on_grid(250.0, (50.0,), prf_hz=3000.0)
+    assert not line_on_grid(37.0, (50.0, 60.0), prf_hz=1000.0)
+    assert not line_on_grid(150.0, (), prf_hz=3000.0)

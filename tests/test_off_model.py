@@ -2194,6 +2194,33 @@ def test_a_drone_read_as_wings_is_read_by_its_flanks_flashes(tmp_path):
     assert row["wingbeat_freq_hz"] is None
 
 
+def test_a_drone_whose_flank_flashes_show_no_period_is_read_by_their_shared_line(tmp_path):
+    """Scene 272 of the low-PRF sweep drawn at seed 556: a K-band quadrotor of point blades at 82.7-85.8 rev/s (3.7 %
+    apart), 9.6 m out, PRF 2.41 kHz, ramps of 332 us that move its blades' flashes metres off in range. Its own bin
+    showed no flashes and it was read a bird; its flanks' powers repeat at 23.3 and 12.0 ms, not within 3 % of a
+    factor 2, so no period was read there. Both flanks' spectra share a line 20 dB high at 167.2 Hz, one rotor's
+    chopping frequency (2 x 83.59 Hz): a drone, its chopping withheld, no wing reading."""
+    radar = dict(f_start_hz=24.0e9, f_stop_hz=24.25e9, ramp_up_s=0.000331796, chirp_period_s=0.000414745,
+                 sample_rate_hz=192889.60705975964, n_samples=64, n_chirps=2048, n_channels=4)
+    quad = {"name": "quadrotor", "type": "multirotor", "elevation_deg": 24.5569, "body_rcs_m2": 0.0843427,
+            "body_scatterers": [{"offset_m": [0.05, 0.0, -0.06], "rcs_m2": 0.00513267}],
+            "motion": {"position_m": [9.08888, 2.22852, 3.26927], "velocity_mps": [0.0914542, -0.065794, 0.0],
+                       "sway_amplitude_m": [0.183687, 0.164796, 0.0693646], "sway_period_s": 1.33895},
+            "rotors": {"count": 4, "blade_profile": "points", "points_per_blade": 8, "root_m": 0.01,
+                       "phase_deg": [5.54129, 332.037, 254.345, 271.621], "blade_rcs_m2": 0.00788392,
+                       "rate_wander_fraction": 0.0, "rate_wander_period_s": 0.881824,
+                       "tilt_deg": [1.28784, -3.68439, 2.60964, -3.32028], "blades": 2, "arm_m": 0.245519,
+                       "blade_length_m": 0.163812, "rev_per_s": [82.7124, -85.8082, 83.5932, -83.7019],
+                       "blade_gains": [1.0, 1.0]}}
+    row = sweep_row(tmp_path, radar, quad, moving_snr_db=10.0232, seed=1308272758,
+                    clutter=_static((10.2172, 27.4975, 3.64023)))
+    assert row["class"] == "drone" and row["range_m"] == pytest.approx(9.6, abs=0.6)
+    assert row["chopping_freq_hz"] is None and row["rotation_rate_hz"] is None
+    assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"
+    assert "shares a line at 167.2 Hz" in row["notes"]
+    assert row["wingbeat_freq_hz"] is None and row["wing_stroke_swing"] is None
+
+
 def _static(*clutter):
     return [{"type": "static", "name": f"clutter{i}", "range_m": r, "azimuth_deg": a, "rcs_m2": rcs}
             for i, (r, a, rcs) in enumerate(clutter)]

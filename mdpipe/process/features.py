@@ -18,10 +18,10 @@ from mdpipe.process import combs, doppler, mains, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import least_squares_line, moving_average, running_median, triangular_average
-from mdpipe.process.flashes import (RAMP_MIN_PERIOD_CHIRPS, RAMP_SETTLE_SHARE, PowerPeriod, chirp_grid_drift,
-                                    flank_flash_period, flash_period, on_chirp_grid, period_of_power, power_period,
-                                    ramp_readable, ramp_floor, ramp_repeat, ramp_repeats_whole, ramp_train,
-                                    sides_alternate, whole_ratio_apart)
+from mdpipe.process.flashes import (MAX_POWER_PERIOD_S, RAMP_MIN_PERIOD_CHIRPS, RAMP_SETTLE_SHARE, PowerPeriod,
+                                    chirp_grid_drift, flank_flash_period, flank_line_hz, flash_period, on_chirp_grid,
+                                    period_of_power, power_period, ramp_readable, ramp_floor, ramp_repeat,
+                                    ramp_repeats_whole, ramp_train, sides_alternate, whole_ratio_apart)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.ranging import MAIN_LOBE_BINS
 from mdpipe.process.validity import OK, Measured, withheld
@@ -569,7 +569,8 @@ def _flashes_between(turn, ramp, *, prf_hz):
 def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=()):
     """``turn`` (no flashes found in the target's own bin), or blade flashes found in its range flanks (``flanks()``,
     :func:`mdpipe.process.flashes.flank_flash_period`): the chopping and rate withheld as ``ambiguous_period``, a
-    drone's flashes seen, the period they recur at a whole multiple of the chopping period. The wings are not read
+    drone's flashes seen, the period they recur at a whole multiple of the chopping period; where the flanks repeat
+    at no period alike, a line both flanks' powers share tells them (:func:`_line_in_flanks`). The wings are not read
     then: flashes on both flanks at once, recurring faster than 40 Hz, are no wings' echo. Read only about a body
     line (the caller asks): a detection without one may itself be one side's flashes, whose "flanks" hold the other
     side's and the hub (low-PRF seed 555, scene 84: such an image read so was taken for the hub between its images,
@@ -588,7 +589,9 @@ def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=()):
     over the noise across +-8 m of range, its own bin's body line 15 dB over them)."""
     read = flanks()
     period_s = flank_flash_period(read.power, prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
-    if period_s is None or mains.repeats_with_grid(period_s, mains_hz):
+    if period_s is None:
+        return _line_in_flanks(turn, read, prf_hz=prf_hz, mains_hz=mains_hz)
+    if mains.repeats_with_grid(period_s, mains_hz):
         return turn
     common = None if read.common is None else period_of_power(np.asarray(read.common, dtype=np.float64),
                                                                prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
@@ -599,6 +602,23 @@ def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=()):
             "its own; flashes shorter than a chirp recur where the chirps catch them alike again, and one blade "
             f"differing repeats once a turn: the chopping is a whole multiple of {1 / period_s:.4g} Hz, which one the "
             "flanks do not tell")
+    return Rotation.withheld("ambiguous_period", note)
+
+
+def _line_in_flanks(turn, read, *, prf_hz, mains_hz=()):
+    """``turn``, or the chopping and rate withheld as ``ambiguous_period`` where a line that both range flanks' powers
+    share (``read``: a :class:`~mdpipe.process.ranging.Flanks`) tells blade flashes
+    (:func:`mdpipe.process.flashes.flank_line_hz`: rotors at rates apart, their trains interleaved), over the fastest
+    wingbeat's harmonics (``1 / flashes.MAX_POWER_PERIOD_S``) and up to ``combs.MAX_CHOP_HZ``, not on the grid's
+    harmonics (:func:`mdpipe.process.mains.line_on_grid`: a supply's ripple on the gain of the clutter about it)."""
+    line_hz = flank_line_hz(read.power, prf_hz=prf_hz, min_hz=1.0 / MAX_POWER_PERIOD_S, max_hz=combs.MAX_CHOP_HZ,
+                            common=read.common)
+    if line_hz is None or mains.line_on_grid(line_hz, mains_hz, prf_hz=prf_hz):
+        return turn
+    note = (f"rotation not estimable: the power of the range bins either side of the target, where a long ramp "
+            f"moves its blades' flashes (their Doppler times the ramp), shares a line at {line_hz:.4g} Hz, though "
+            "the two repeat at no period alike (rotors at rates apart interleave their flashes): flashes recur at a "
+            "chopping frequency whose multiple, folded by the PRF, lies there; which one the flanks do not tell")
     return Rotation.withheld("ambiguous_period", note)
 
 

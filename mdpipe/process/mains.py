@@ -39,6 +39,7 @@ CHANCE_OFFSETS = (1 / 3, 1 / 2, 2 / 3)  # hum's lines outnumber those at these f
 CHANCE_SIGMAS = 3.0      # lines met by chance) by MIN_LINES and this many Poisson deviations of the most of them
 FINER_SHARE = 0.5        # a comb f0 / m apart (m up to 7) whose every position between the orders holds this share of
                          # the lines at them is a finer comb's (a wingbeat of 10 Hz about a still body: 16 orders)
+RIPPLE_ORDERS = 4        # a ripple's lines in a power: at the grid's rate or twice it, and their doubles
 MAX_LINE_STEP = 2        # hum's lines lie at every order, or (a rectifier's ripple) every second one
 MAX_OFF = 0.25           # ... on them: their median offset from k f0 this share of the reach allowed (lines met by
                          # chance within it: about half; hum's 0.001-0.1, drifting 0.2 Hz over 10 s included)
@@ -59,6 +60,19 @@ def repeats_with_grid(period_s, mains_hz):
     for f_hz in mains_hz:
         halves = period_s * 2.0 * f_hz
         if round(halves) >= 1 and abs(halves - round(halves)) <= GRID_TOLERANCE * round(halves):
+            return True
+    return False
+
+
+def line_on_grid(f_hz, mains_hz, *, prf_hz):
+    """Whether a line at ``f_hz`` in a power's spectrum (0 to PRF / 2) lies on one of the first ``RIPPLE_ORDERS``
+    harmonics of one of ``mains_hz``, folded by ``prf_hz``, order k within k ``GRID_TOLERANCE``: a supply's ripple
+    on the gain (at the grid's rate, or a rectifier's twice it) swells the clutter about a target, whose power then
+    holds the ripple's lines and their doubles."""
+    orders = np.arange(1, RIPPLE_ORDERS + 1)
+    for mains_f_hz in mains_hz:
+        folded = np.abs(np.mod(orders * mains_f_hz + prf_hz / 2, prf_hz) - prf_hz / 2)
+        if np.any(np.abs(folded - f_hz) <= GRID_TOLERANCE * orders * mains_f_hz):
             return True
     return False
 
