@@ -46,6 +46,16 @@ def test_running_min_and_median(x, size):
     np.testing.assert_array_equal(filters.running_median(x, size, mode="wrap"),
                                   ndimage.median_filter(x, size=size, mode="wrap"))
 
+
+@pytest.mark.parametrize("n", [filters.MEDIAN_CHUNK - 1, filters.MEDIAN_CHUNK, 2 * filters.MEDIAN_CHUNK + 7])
+def test_running_median_taken_in_chunks_is_scipy_s(n):
+    """A running median longer than one chunk (taken a chunk at a time, its windows' copy bounded) is scipy's at
+    every sample, the chunks' seams and both edges included."""
+    x = np.random.default_rng(n).exponential(1.0, n)
+    for mode in ("nearest", "wrap"):
+        np.testing.assert_array_equal(filters.running_median(x, 257, mode=mode),
+                                      ndimage.median_filter(x, size=257, mode=mode))
+
 def test_local_maxima_against_argrelextrema():
     """Strict maxima are scipy's; a plateau counts once at its left end; NaN is never a maximum."""
     from scipy.signal import argrelextrema

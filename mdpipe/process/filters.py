@@ -10,6 +10,8 @@ of a strong tone, repeated, is no average of anything).
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
+MEDIAN_CHUNK = 4096  # samples a running median takes at once (its windows' copy bounded)
+
 
 def _padded(x, size, mode, axis):
     before = size // 2
@@ -57,8 +59,14 @@ def running_min(x, size):
 
 def running_median(x, size, *, mode="nearest"):
     """Median over ``size`` (odd) neighbours centred on each sample (scipy.ndimage.median_filter; ``mode``
-    ``"nearest"``, or ``"wrap"`` for a circular axis such as a Doppler span)."""
-    return np.median(sliding_window_view(_padded(np.asarray(x), size, mode, 0), size), axis=-1)
+    ``"nearest"``, or ``"wrap"`` for a circular axis such as a Doppler span). Taken ``MEDIAN_CHUNK`` samples at a
+    time: the median copies its windows, ``size`` values a sample (a window of 257 over a long capture's 100 000
+    spectrum bins: 206 MB at once, 8 MB a chunk)."""
+    windows = sliding_window_view(_padded(np.asarray(x), size, mode, 0), size)
+    if len(windows) <= MEDIAN_CHUNK:
+        return np.median(windows, axis=-1)
+    return np.concatenate([np.median(windows[start:start + MEDIAN_CHUNK], axis=-1)
+                           for start in range(0, len(windows), MEDIAN_CHUNK)])
 
 
 def local_maxima(values):
