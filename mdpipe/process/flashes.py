@@ -72,7 +72,8 @@ FLANK_RATIOS = (1.0, 2.0, 0.5)  # two range flanks' flash periods agree at these
 FLANK_LINE_DB = 13.0        # a line both range flanks' powers share stands this far over each one's local median
                             # (noise: both within a bin of one frequency w.p. 9 exp(-2 ln2 10^1.3) = 1e-11 a bin)
 COMMON_LINE_DB = 10.0       # ... and what every range bin holds in common stands under this there (else bursts)
-LINE_MEDIAN_SHARE = 1 / 32  # a power spectrum's local median over this share of its bins (9 to 257 of them)
+LINE_MEDIAN_SHARE = 1 / 32  # a power spectrum's local median over this share of its bins ...
+LINE_MEDIAN_BINS = (9, 257)  # ... and at least and at most this many
 NYQUIST_GUARD = 0.02        # lines within this share of PRF / 2 of it not read: chirps alternating (two transmitters
                             # in turn, a switch) swell every bin's power at PRF / 2, a bird's and a branch's too
 RAMP_PARTS = 8              # the ramp is cut in this many parts to see where in it a flash falls
@@ -314,7 +315,7 @@ def line_contrast(power, *, prf_hz):
     x = np.asarray(power, dtype=np.float64)
     n = len(x)
     spectrum = np.abs(np.fft.rfft((x - x.mean()) * periodic_hann(n))) ** 2
-    width = int(np.clip(len(spectrum) * LINE_MEDIAN_SHARE, 9, 257)) | 1
+    width = int(np.clip(len(spectrum) * LINE_MEDIAN_SHARE, *LINE_MEDIAN_BINS)) | 1
     floor = np.maximum(running_median(spectrum, width), np.finfo(float).tiny)
     return np.fft.rfftfreq(n, 1.0 / prf_hz), spectrum / floor
 

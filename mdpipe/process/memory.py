@@ -10,13 +10,16 @@ from dataclasses import replace
 import numpy as np
 
 from mdpipe.errors import ParameterError
-from mdpipe.process import flashes, interference, ranging
+from mdpipe.process import filters, flashes, interference, ranging
 
 GIB = 2**30
 PASS2_BINS_PER_TARGET = 64  # bins a target's path may cross (a bird at 15 m/s over 1 s at 0.23 m bins)
 ANALYSIS_BYTES_PER_CHIRP = 1536  # per target: complex128 copies and spectrograms of the slow-time signal (the flash
                                  # edges' 8x zero-padded at a hop of 1/8 frame: 512 B a chirp, and 8 MB of transforms)
 FLASH_VIEW_BYTES = 40  # per chirp and view (parts of the ramp, range sides): complex64, complex128 demodulated, a stack
+FLANK_LINE_BYTES = 24  # per chirp, where range flanks are read: their line spectra (flashes.flank_line_hz), one flank's
+                       # transform, spectrum, median and contrast at a time, both contrasts and their bins' maxima kept
+                       # (measured: 16 B a chirp, beside the running median's chunk of windows)
 RAMP_SLOT_BYTES = 160  # per slot of the ramp parts' grid: the grid, its mask and trend, the autocorrelation's FFTs
 BASE_BYTES = 64 * 2**20  # the interpreter, numpy, h5py and BLAS, before any array (measured: 55-60 MB)
 
@@ -81,12 +84,14 @@ def plan_bytes(*, n_chirps, n_channels, n_samples, sample_itemsize, read_chunk_b
     workers = min(ranging.WORKERS, -(-n_chirps // rows))
     pass2 = workers * per_thread + 2 * n_chirps * n_bins * 2 * real + 8 * params.n_samples * n_bins + reads
     # one target's flash views at a time (read only where the features ask), and its bounded grid of ramp parts;
-    # its range flanks' bins (complex64) where a long ramp has them read, their power (float64, both flanks), and
-    # their kernels (complex64, the last few bins' kept, each built through complex128)
+    # its range flanks' bins (complex64) where a long ramp has them read, their power (float64, both flanks) and its
+    # line spectra, and their kernels (complex64, the last few bins' kept, each built through complex128)
     flanks = ranging.flank_bins(params, process.range_window)
     side = 0 if flanks is None else len(ranging.flank_offsets(*flanks))
-    views = n_chirps * ((flashes.RAMP_PARTS + 2) * FLASH_VIEW_BYTES + (2 * side * 8 + 16 if side else 0))
+    views = n_chirps * ((flashes.RAMP_PARTS + 2) * FLASH_VIEW_BYTES + (2 * side * 8 + 16 + FLANK_LINE_BYTES if side
+                                                                      else 0))
     views += 2 * side * params.n_samples * (8 * ranging.FLANK_KERNELS + 16)
+    views += filters.MEDIAN_CHUNK * flashes.LINE_MEDIAN_BINS[1] * 8 if side else 0  # the line spectra's median
     share = max(params.sampled_duration_s / params.chirp_period_s, flashes.RAMP_MIN_SHARE)
     slots = min(n_chirps * flashes.RAMP_PARTS / share, flashes.RAMP_MAX_SLOTS)
     analysis = process.max_targets * n_chirps * ANALYSIS_BYTES_PER_CHIRP + views + int(slots) * RAMP_SLOT_BYTES
