@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-lowprf evaluate-heldout-lowprf-fresh evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades offmodel-cw offmodel-cw-hum readme clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-lowprf evaluate-heldout-lowprf-fresh evaluate-heldout-lowprf-birds evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades offmodel-cw offmodel-cw-hum readme clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -101,6 +101,11 @@ evaluate-heldout-lowprf-fresh: $(MDPIPE)
 		$(MDPIPE) evaluate configs/sweeps/heldout_lowprf.yaml --seed $$seed --out out/evaluate_heldout_lowprf_$$seed -j 2 \
 			|| exit 1; \
 	done
+
+# The held-out birds at the low-PRF sweep's PRFs, 1.5-6 kHz (~1 min a seed): does a bird read a drone there?
+evaluate-heldout-lowprf-birds: $(MDPIPE)
+	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf_birds.yaml --out out/evaluate_heldout_lowprf_birds -j 2
+	$(MDPIPE) evaluate configs/sweeps/heldout_lowprf_birds.yaml --seed 999 --out out/evaluate_heldout_lowprf_birds_999 -j 2
 
 # The held-out bird sweep: the default sweep's birds at a counter-drone radar's PRF and dwell (~2 min)
 evaluate-heldout-birds: $(MDPIPE)
