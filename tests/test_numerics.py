@@ -42,6 +42,7 @@ def test_moving_average_inside_averages_only_the_samples_inside(x, size):
 @pytest.mark.parametrize("size", [1, 3, 5, 11])
 def test_running_min_and_median(x, size):
     np.testing.assert_array_equal(filters.running_min(x, size), ndimage.minimum_filter1d(x, size, mode="nearest"))
+    np.testing.assert_array_equal(filters.running_max(x, size), ndimage.maximum_filter1d(x, size, mode="nearest"))
     np.testing.assert_array_equal(filters.running_median(x, size), ndimage.median_filter(x, size=size, mode="nearest"))
     np.testing.assert_array_equal(filters.running_median(x, size, mode="wrap"),
                                   ndimage.median_filter(x, size=size, mode="wrap"))

@@ -39,6 +39,7 @@ MAX_UNRANGED_SPEED_MPS = 50.0  # without a range track (CW), the one alias of th
 MAX_SPEED_MPS = 25.0         # birds and small drones fly slower: a faster alias of the body Doppler is not taken
 BODY_TRACK_FRAMES = 9        # running median of the body track (rotor lines win single frames)
 BODY_RATE_MEDIAN_S = 0.2     # ... and, for the mean range rate, over this time: a rotor line winning up to 0.1 s
+BODY_SPREAD_PERCENTILES = (90, 10)  # the body track's spread read between these (a rotor line wins a frame or two)
 STROKE_SWING = 0.15          # wings' reach swinging this share of its greatest over the dwell: a stroke (rotors' hold)
 WINGBEAT_SPREAD_SHARE = 0.01  # a wingbeat's standard error (its repeats' scatter about k T) at most this share of T:
                               # the 3 % a wingbeat is held to at three standard errors
@@ -566,7 +567,7 @@ def _flashes_between(turn, ramp, *, prf_hz):
                    rotor_rates_hz=tuple(factor * r for r in turn.rotor_rates_hz))
 
 
-def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=()):
+def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=(), own_power=None, body_hz=None, body_spread_hz=0.0):
     """``turn`` (no flashes found in the target's own bin), or blade flashes found in its range flanks (``flanks()``,
     :func:`mdpipe.process.flashes.flank_flash_period`): the chopping and rate withheld as ``ambiguous_period``, a
     drone's flashes seen, the period they recur at a whole multiple of the chopping period; where the flanks repeat
@@ -590,7 +591,8 @@ def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=()):
     read = flanks()
     period_s = flank_flash_period(read.power, prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
     if period_s is None:
-        return _line_in_flanks(turn, read, prf_hz=prf_hz, mains_hz=mains_hz)
+        return _line_in_flanks(turn, read, prf_hz=prf_hz, mains_hz=mains_hz, own_power=own_power, body_hz=body_hz,
+                               body_spread_hz=body_spread_hz)
     if mains.repeats_with_grid(period_s, mains_hz):
         return turn
     common = None if read.common is None else period_of_power(np.asarray(read.common, dtype=np.float64),
@@ -605,15 +607,17 @@ def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=()):
     return Rotation.withheld("ambiguous_period", note)
 
 
-def _line_in_flanks(turn, read, *, prf_hz, mains_hz=()):
+def _line_in_flanks(turn, read, *, prf_hz, mains_hz=(), own_power=None, body_hz=None, body_spread_hz=0.0):
     """``turn``, or the chopping and rate withheld as ``ambiguous_period`` where a line that both range flanks' powers
     share (``read``: a :class:`~mdpipe.process.ranging.Flanks`) tells blade flashes
     (:func:`mdpipe.process.flashes.flank_line_hz`: rotors at rates apart, their trains interleaved), over the fastest
-    wingbeat's harmonics (``1 / flashes.MAX_POWER_PERIOD_S``) and up to ``combs.MAX_CHOP_HZ``, not on the grid's
-    harmonics (:func:`mdpipe.process.mains.line_on_grid`: a supply's ripple on the gain of the clutter about it)."""
+    wingbeat's harmonics (``1 / flashes.MAX_POWER_PERIOD_S``) and up to ``combs.MAX_CHOP_HZ``: not lit in every range
+    bin, nor far stronger in the target's own power ``own_power`` (per chirp), nor on the beats of its body's Doppler
+    ``body_hz`` (spread over ``body_spread_hz``), nor on the grid's harmonics (``mains_hz``)."""
     line_hz = flank_line_hz(read.power, prf_hz=prf_hz, min_hz=1.0 / MAX_POWER_PERIOD_S, max_hz=combs.MAX_CHOP_HZ,
-                            common=read.common)
-    if line_hz is None or mains.line_on_grid(line_hz, mains_hz, prf_hz=prf_hz):
+                            common=read.common, own=own_power, body_hz=body_hz, body_spread_hz=body_spread_hz,
+                            mains_hz=mains_hz)
+    if line_hz is None:
         return turn
     note = (f"rotation not estimable: the power of the range bins either side of the target, where a long ramp "
             f"moves its blades' flashes (their Doppler times the ramp), shares a line at {line_hz:.4g} Hz, though "
@@ -2042,7 +2046,10 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
                         and not band.aliased)  # (or wings' beat: see _wings_over_ambiguous_period)
     if flanks is not None and hum is None and body.track_hz is not None and turn.chopping.status == "no_flashes":
         # (no rate either way: the lengths stand; flashes on both flanks are no wings': wings_may_repeat stays False)
-        turn = _flashes_in_flanks(turn, flanks, prf_hz=prf_hz, mains_hz=params.mains_frequencies_hz)
+        spread_hz = float(np.subtract(*np.percentile(doppler.fold_hz(np.asarray(body.track_hz) - body_doppler_hz,
+                                                                      prf_hz=prf_hz), BODY_SPREAD_PERCENTILES)))
+        turn = _flashes_in_flanks(turn, flanks, prf_hz=prf_hz, mains_hz=params.mains_frequencies_hz,
+                                  own_power=np.abs(s) ** 2, body_hz=body_doppler_hz, body_spread_hz=spread_hz)
     if turn.chopping.value is not None or (turn.chopping.status in ROTOR_EVIDENCE and not wings_may_repeat):
         beat = flaps = stroke = withheld("not_applicable", "")  # blade flashes exclude a bird
     elif turn.chopping.status == "not_rotor":  # a comb spaced over any wingbeat (combs.MIN_CHOP_HZ up)

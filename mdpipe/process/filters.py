@@ -57,6 +57,11 @@ def running_min(x, size):
     return sliding_window_view(_padded(np.asarray(x), size, "nearest", 0), size).min(axis=-1)
 
 
+def running_max(x, size):
+    """Maximum over ``size`` neighbours centred on each sample (scipy.ndimage.maximum_filter1d, nearest)."""
+    return sliding_window_view(_padded(np.asarray(x), size, "nearest", 0), size).max(axis=-1)
+
+
 def running_median(x, size, *, mode="nearest"):
     """Median over ``size`` (odd) neighbours centred on each sample (scipy.ndimage.median_filter; ``mode``
     ``"nearest"``, or ``"wrap"`` for a circular axis such as a Doppler span). Taken ``MEDIAN_CHUNK`` samples at a

@@ -23,8 +23,9 @@ import functools
 from dataclasses import dataclass
 
 import numpy as np
+from mdpipe.process import doppler, mains
 from mdpipe.process.doppler import periodic_hann
-from mdpipe.process.filters import local_maxima, moving_average, robust_sigma, running_median
+from mdpipe.process.filters import local_maxima, moving_average, robust_sigma, running_max, running_median
 from mdpipe.process.periodicity import (autocorrelation, bartlett_error, find_period, lag_range,
                                          period_from_autocorrelation)
 
@@ -70,10 +71,19 @@ RESOLVED_SIGMAS = 8.0       # ... read only on a peak this many standard errors 
 AROUND = 0.03               # a lag period / k is looked for within +-3 %
 FLANK_RATIOS = (1.0, 2.0, 0.5)  # two range flanks' flash periods agree at these ratios (a turn and a chopping)
 FLANK_LINE_DB = 13.0        # a line both range flanks' powers share stands this far over each one's local median
-                            # (noise: both within a bin of one frequency w.p. 9 exp(-2 ln2 10^1.3) = 1e-11 a bin)
+                            # (noise: 2.6e-5 a bin a flank over a median of 33 bins, measured; both within a bin of
+                            # one frequency about 9 times its square, 6e-9 a bin)
 COMMON_LINE_DB = 10.0       # ... and what every range bin holds in common stands under this there (else bursts)
+OWN_LINE_DB = 13.0          # ... and the target's own power not this far over the flanks' contrast there (else its
+                            # own beats leak into them: two birds in one cell 17-20 dB over; the low-PRF sweep's
+                            # drones read by the line -6.5 to +10.2 dB)
+BEAT_ORDERS = (1, 2)        # ... nor within a few bins of the body's Doppler, or twice it, folded: the echo beats with
+BEAT_BINS = 2               #     a residue of static clutter and with its mirror image (a real IF's negative beat, its
+                            #     Doppler reversed) in the flanks, through the range window's far sidelobes ...
+BEAT_STEADY_BINS = 8        # ... where the body's Doppler, times the order, spreads over at most this many bins (a
+                            #     body swaying faster smears its beats: no line; a drone's track spans 100s of Hz)
 LINE_MEDIAN_SHARE = 1 / 32  # a power spectrum's local median over this share of its bins ...
-LINE_MEDIAN_BINS = (9, 257)  # ... and at least and at most this many
+LINE_MEDIAN_BINS = (33, 257)  # ... and at least and at most this many
 NYQUIST_GUARD = 0.02        # lines within this share of PRF / 2 of it not read: chirps alternating (two transmitters
                             # in turn, a switch) swell every bin's power at PRF / 2, a bird's and a branch's too
 RAMP_PARTS = 8              # the ramp is cut in this many parts to see where in it a flash falls
@@ -311,24 +321,32 @@ def flank_flash_period(flanks, *, prf_hz, min_period_s):
 
 def line_contrast(power, *, prf_hz):
     """(f_hz, contrast): a power's (per chirp) Hann periodogram, its mean taken out, over its running median
-    (``LINE_MEDIAN_SHARE`` of the bins), from 0 to PRF / 2: noise stands ``Exp(1) / ln 2`` there, a line far over it."""
+    (``LINE_MEDIAN_SHARE`` of the bins, within ``LINE_MEDIAN_BINS``), from 0 to PRF / 2: noise stands about ``Exp(1) /
+    ln 2`` there, a line far over it. None for a power that does not vary (its rounding would read as lines)."""
     x = np.asarray(power, dtype=np.float64)
     n = len(x)
+    if n < 2 or not np.var(x) > 1e-12 * np.mean(x) ** 2:
+        return None
     spectrum = np.abs(np.fft.rfft((x - x.mean()) * periodic_hann(n))) ** 2
     width = int(np.clip(len(spectrum) * LINE_MEDIAN_SHARE, *LINE_MEDIAN_BINS)) | 1
     floor = np.maximum(running_median(spectrum, width), np.finfo(float).tiny)
     return np.fft.rfftfreq(n, 1.0 / prf_hz), spectrum / floor
 
 
-def _within_a_bin(contrast):
-    """Each bin's ``contrast`` or its neighbours', the larger: a line between two bins, or a rotor's wander."""
-    padded = np.pad(contrast, 1, mode="edge")
-    return np.maximum.reduce([padded[:-2], padded[1:-1], padded[2:]])
+def _lit(power, *, prf_hz):
+    """A callable: the line contrast of ``power`` (:func:`line_contrast`) within a bin of a frequency (Hz); 0 where the
+    power does not vary."""
+    read = line_contrast(power, prf_hz=prf_hz)
+    if read is None:
+        return lambda f_hz: 0.0
+    f_read_hz, contrast = read[0], running_max(read[1], 3)
+    return lambda f_hz: float(np.interp(f_hz, f_read_hz, contrast))
 
 
-def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None):
-    """The frequency (Hz) of the strongest line that the powers of both range flanks of a target share (``flanks``
-    (n_chirps, 2): :func:`mdpipe.process.ranging.flank_powers`), else None.
+def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, body_hz=None, body_spread_hz=0.0,
+                  mains_hz=()):
+    """The frequency (Hz) of the strongest line that the powers of both range flanks of a target share and that is
+    a blade flashes' (``flanks`` (n_chirps, 2): :func:`mdpipe.process.ranging.flank_powers`), else None.
 
     Flashes recur at the chopping frequency c; the power of their train holds lines at its multiples k c, folded
     by the PRF, each flank's (one side's flashes) at the same frequencies. Rotors a few per cent apart, their trains
@@ -336,26 +354,49 @@ def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None):
     lines stand apart in its spectrum (low-PRF seeds 555-556: of 43 drones whose lines stand 13 dB or more over the
     noise read ``none`` or ``bird``, 38 with flanks read, the flanks of 9 shared a line 13.4-20.1 dB high, each within
     0.8 % of the chopping frequency or twice it; the 136 flank reads of birds, branches and moving points of the
-    default and held-out bird sweeps shared none over 10.9 dB between 40 Hz and 3 kHz). The line must stand
-    ``FLANK_LINE_DB`` over each flank's local median (:func:`line_contrast`) within a bin, between ``min_hz`` and
-    ``max_hz`` and off ``PRF / 2`` (``NYQUIST_GUARD``), and ``common`` (n_chirps,), what every range bin holds in
-    common, under ``COMMON_LINE_DB`` there: another radar's bursts light every bin alike, and a drone whose
-    flashes light every bin keeps the reading of its own. Which multiple of c (or fold of one) the line is the
-    flanks do not tell."""
-    contrasts = [line_contrast(power, prf_hz=prf_hz) for power in np.asarray(flanks, dtype=np.float64).T]
-    f_hz = contrasts[0][0]
-    shared = np.minimum.reduce([_within_a_bin(contrast) for _, contrast in contrasts])
+    default and held-out bird sweeps shared none over 10.9 dB between 40 Hz and 3 kHz).
+
+    A line stands ``FLANK_LINE_DB`` over each flank's local median (:func:`line_contrast`) within a bin of one
+    frequency, between ``min_hz`` and ``max_hz`` and off ``PRF / 2`` (``NYQUIST_GUARD``), and is none of these:
+    what every range bin holds in common (``common`` (n_chirps,)) lit ``COMMON_LINE_DB`` there (another radar's
+    bursts light every bin alike; a drone whose flashes light every bin keeps the reading of its own); the target's
+    own power (``own`` (n_chirps,), its bin's) holding it ``OWN_LINE_DB`` or more over the flanks' contrast (its
+    echo's own beats, two bodies in one range cell, leak into both flanks through the range window's sidelobes, far
+    weaker there than in its bin); within ``BEAT_BINS`` bins (and half the body's spread ``body_spread_hz`` times the
+    order) of the body's Doppler ``body_hz`` or twice it, folded (``BEAT_ORDERS``: a bird's echo beats there with a
+    residue of static clutter and with its mirror image, a Hamming window's far sidelobes bringing both into the
+    flanks), where that spread is ``BEAT_STEADY_BINS`` bins or under; a harmonic of the grid (:func:`mdpipe.process.mains.line_on_grid` of ``mains_hz``: a supply's
+    ripple on the gain of the clutter about the target). Which multiple of c (or fold of one) the line is the flanks
+    do not tell."""
+    reads = [line_contrast(power, prf_hz=prf_hz) for power in np.asarray(flanks, dtype=np.float64).T]
+    if any(read is None for read in reads):
+        return None
+    f_hz = reads[0][0]
     searched = (f_hz >= min_hz) & (f_hz <= min(max_hz, prf_hz / 2 * (1 - NYQUIST_GUARD)))
-    if not np.any(searched):
-        return None
-    best = int(np.argmax(np.where(searched, shared, 0.0)))
-    if shared[best] < 10 ** (FLANK_LINE_DB / 10):
-        return None
-    if common is not None and _within_a_bin(line_contrast(common, prf_hz=prf_hz)[1])[best] >= 10 ** (
-            COMMON_LINE_DB / 10):
-        return None
-    near = np.arange(max(best - 1, 0), min(best + 2, len(f_hz)))  # the line's own bin: both flanks' most there
-    return float(f_hz[near[np.argmax(np.prod([contrast[near] for _, contrast in contrasts], axis=0))]])
+    shared = np.minimum.reduce([running_max(np.where(searched, contrast, 0.0), 3) for _, contrast in reads])
+    lines = np.flatnonzero(searched & (shared >= 10 ** (FLANK_LINE_DB / 10)))
+    common_lit = None if common is None else _lit(common, prf_hz=prf_hz)
+    own_lit = None if own is None else _lit(own, prf_hz=prf_hz)
+    resolution_hz = prf_hz / len(np.asarray(flanks))
+    beats = [] if body_hz is None else [
+        (abs(float(doppler.fold_hz(order * body_hz, prf_hz=prf_hz))),
+         BEAT_BINS * resolution_hz + order * body_spread_hz / 2) for order in BEAT_ORDERS
+        if order * body_spread_hz <= BEAT_STEADY_BINS * resolution_hz]
+    read = set()
+    for best in lines[np.argsort(shared[lines])[::-1]]:
+        near = np.arange(max(best - 1, 0), min(best + 2, len(f_hz)))  # the line's own bin: both flanks' most there
+        line = int(near[np.argmax(np.prod([contrast[near] for _, contrast in reads], axis=0))])
+        if line in read or not searched[line]:
+            continue
+        read.add(line)
+        line_hz = float(f_hz[line])
+        if ((common_lit is not None and common_lit(line_hz) >= 10 ** (COMMON_LINE_DB / 10))
+                or (own_lit is not None and own_lit(line_hz) >= 10 ** (OWN_LINE_DB / 10) * shared[line])
+                or any(abs(line_hz - beat_hz) <= reach_hz for beat_hz, reach_hz in beats)
+                or mains.line_on_grid(line_hz, mains_hz, prf_hz=prf_hz, resolution_hz=resolution_hz)):
+            continue
+        return line_hz
+    return None
 
 
 def whole_ratio_apart(a, b, *, most=MAX_DIVISOR):

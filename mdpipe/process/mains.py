@@ -64,15 +64,15 @@ def repeats_with_grid(period_s, mains_hz):
     return False
 
 
-def line_on_grid(f_hz, mains_hz, *, prf_hz):
-    """Whether a line at ``f_hz`` in a power's spectrum (0 to PRF / 2) lies on one of the first ``RIPPLE_ORDERS``
-    harmonics of one of ``mains_hz``, folded by ``prf_hz``, order k within k ``GRID_TOLERANCE``: a supply's ripple
-    on the gain (at the grid's rate, or a rectifier's twice it) swells the clutter about a target, whose power then
-    holds the ripple's lines and their doubles."""
+def line_on_grid(f_hz, mains_hz, *, prf_hz, resolution_hz=0.0):
+    """Whether a line read at ``f_hz`` in a power's spectrum (0 to PRF / 2, on bins ``resolution_hz`` apart) lies on
+    one of the first ``RIPPLE_ORDERS`` harmonics of one of ``mains_hz``, folded by ``prf_hz``, order k within k
+    ``GRID_TOLERANCE`` and half a bin: a supply's ripple on the gain (at the grid's rate, or a rectifier's twice it)
+    swells the clutter about a target, whose power then holds the ripple's lines and their doubles."""
     orders = np.arange(1, RIPPLE_ORDERS + 1)
     for mains_f_hz in mains_hz:
         folded = np.abs(np.mod(orders * mains_f_hz + prf_hz / 2, prf_hz) - prf_hz / 2)
-        if np.any(np.abs(folded - f_hz) <= GRID_TOLERANCE * orders * mains_f_hz):
+        if np.any(np.abs(folded - f_hz) <= GRID_TOLERANCE * orders * mains_f_hz + resolution_hz / 2):
             return True
     return False
 
