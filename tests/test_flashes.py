@@ -597,7 +597,7 @@ def _interleaved_flank(n, *, seed, flash=6.0, ramp_share=0.8, periods=FOUR_ROTOR
     return power
 
 
-def _near_a_multiple(f_hz, choppings_hz, *, prf_hz, most=6, rel=0.005):
+def _near_a_multiple(f_hz, choppings_hz, *, prf_hz, most=3, rel=0.003):
     """Whether ``f_hz`` lies within ``rel`` of a multiple (up to ``most``) of one of ``choppings_hz``, folded."""
     return any(abs(abs((k * c + prf_hz / 2) % prf_hz - prf_hz / 2) - f_hz) <= rel * k * c
                for c in choppings_hz for k in range(1, most + 1))
@@ -606,7 +606,7 @@ def _near_a_multiple(f_hz, choppings_hz, *, prf_hz, most=6, rel=0.005):
 def test_interleaved_rotors_on_both_flanks_share_a_line_where_their_power_shows_no_period():
     """Four rotors' flash trains 0.6-3.7 % apart on both range flanks (1.6 kHz, 4096 chirps, noise and flash energies
     drawn apart): their power's autocorrelation shows no period (:func:`flank_flash_period`), but both flanks'
-    spectra share a line within 0.5 % of a multiple of one rotor's chopping frequency, 219-227 Hz."""
+    spectra share a line within 0.3 % of a multiple (up to 3) of one rotor's chopping frequency, 219-227 Hz."""
     from mdpipe.process.flashes import flank_flash_period, flank_line_hz
     prf_hz = 1600.0
     flanks = np.stack([_interleaved_flank(4096, seed=5), _interleaved_flank(4096, seed=6)], axis=1)
@@ -662,3 +662,56 @@ def test_interleaved_rotors_in_the_flanks_are_a_drone_s_and_a_ripple_s_line_on_t
     assert _flashes_in_flanks(turn, lambda: ripple, prf_hz=prf_hz, mains_hz=(50.0, 60.0)) is turn
     told = _flashes_in_flanks(turn, lambda: ripple, prf_hz=prf_hz, mains_hz=())
     assert told.chopping.status == "ambiguous_period" and "shares a line at 100 Hz" in told.chopping.note
+
+
+def _flanks_with_a_line(amplitude, *, n=8192, prf_hz=1600.0, line_hz=300.0, seed=1):
+    """Two flanks' powers: unit exponential noise, each plus a sinusoid of ``amplitude`` at ``line_hz`` (phases
+    apart)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(n)
+    return np.stack([rng.exponential(1.0, n) + amplitude * np.sin(2 * np.pi * line_hz * t / prf_hz + phase)
+                     for phase in (0.3, 1.9)], axis=1)
+
+
+def test_a_flank_line_is_read_from_13_db_up_and_off_half_the_prf():
+    """A line on both flanks standing 11.7 dB over their medians (the weaker flank's) is not read, one of 15.1 dB is,
+    at its frequency; the same line at 0.99 of PRF / 2 (within ``NYQUIST_GUARD``) is not, at 0.95 of it it is; under
+    ``min_hz`` it is not."""
+    from mdpipe.process.flashes import _lit, flank_line_hz
+    prf_hz = 1600.0
+
+    def read(flanks, **kw):
+        return flank_line_hz(flanks, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0, **kw)
+
+    weak, strong = _flanks_with_a_line(0.13), _flanks_with_a_line(0.18)
+    assert [round(10 * np.log10(min(_lit(f[:, i], prf_hz=prf_hz)(300.0) for i in (0, 1))), 1)
+            for f in (weak, strong)] == [11.7, 15.1]
+    assert read(weak) is None and read(strong) == pytest.approx(300.0, abs=prf_hz / 8192)
+    assert read(_flanks_with_a_line(0.3, line_hz=0.99 * prf_hz / 2)) is None
+    assert read(_flanks_with_a_line(0.3, line_hz=0.95 * prf_hz / 2)) == pytest.approx(0.95 * prf_hz / 2, abs=0.2)
+    assert read(_flanks_with_a_line(0.3, line_hz=35.0)) is None
+
+
+def test_a_flank_line_the_target_s_own_power_holds_far_stronger_or_its_body_s_beat_is_no_flashes():
+    """A line both flanks share (15.1 dB) is no flashes' where the target's own power holds it 13 dB stronger or more
+    (its own beats, two bodies in one cell, leak into the flanks through the range window's sidelobes), nor where it
+    lies on a steady body's Doppler or twice it (its beats with clutter's residue and its mirror image); it is where
+    the own power holds it as weakly as the flanks, or the body's Doppler, times the order, swings over more than 50 Hz
+    (its beats smeared)."""
+    from mdpipe.process.flashes import flank_line_hz
+    prf_hz, n = 1600.0, 8192
+    flanks = _flanks_with_a_line(0.18)
+    t = np.arange(n)
+    rng = np.random.default_rng(4)
+
+    def read(**kw):
+        return flank_line_hz(flanks, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0, **kw)
+
+    loud = rng.exponential(1.0, n) + 2.0 * np.sin(2 * np.pi * 300.0 * t / prf_hz)  # ~35 dB
+    quiet = rng.exponential(1.0, n) + 0.18 * np.sin(2 * np.pi * 300.0 * t / prf_hz)
+    assert read(own=loud) is None and read(own=quiet) == pytest.approx(300.0, abs=0.2)
+    for body_hz in (300.0, -150.0, 1300.0, 500.0):  # 1300 Hz folds to -300; 500 Hz and twice it, -600, lie off
+        expected = pytest.approx(300.0, abs=0.2) if body_hz == 500.0 else None
+        assert read(body_hz=body_hz) == expected
+    assert read(body_hz=-150.0, body_spread_hz=24.0) is None  # twice it swings over 48 Hz: its beat reaches 300
+    assert read(body_hz=-150.0, body_spread_hz=26.0) == pytest.approx(300.0, abs=0.2)

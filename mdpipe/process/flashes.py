@@ -80,8 +80,9 @@ OWN_LINE_DB = 13.0          # ... and the target's own power not this far over t
 BEAT_ORDERS = (1, 2)        # ... nor within a few bins of the body's Doppler, or twice it, folded: the echo beats with
 BEAT_BINS = 2               #     a residue of static clutter and with its mirror image (a real IF's negative beat, its
                             #     Doppler reversed) in the flanks, through the range window's far sidelobes ...
-BEAT_STEADY_BINS = 8        # ... where the body's Doppler, times the order, spreads over at most this many bins (a
-                            #     body swaying faster smears its beats: no line; a drone's track spans 100s of Hz)
+BEAT_STEADY_HZ = 50.0       # ... where the body's Doppler, times the order, spreads over at most this (a sparrow
+                            #     crossing at K band: 13 Hz; the tracks of drones read by a line: 180-1650 Hz, swaying
+                            #     or taken by rotor lines, their beats smeared into no line)
 LINE_MEDIAN_SHARE = 1 / 32  # a power spectrum's local median over this share of its bins ...
 LINE_MEDIAN_BINS = (33, 257)  # ... and at least and at most this many
 NYQUIST_GUARD = 0.02        # lines within this share of PRF / 2 of it not read: chirps alternating (two transmitters
@@ -365,7 +366,7 @@ def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, body
     weaker there than in its bin); within ``BEAT_BINS`` bins (and half the body's spread ``body_spread_hz`` times the
     order) of the body's Doppler ``body_hz`` or twice it, folded (``BEAT_ORDERS``: a bird's echo beats there with a
     residue of static clutter and with its mirror image, a Hamming window's far sidelobes bringing both into the
-    flanks), where that spread is ``BEAT_STEADY_BINS`` bins or under; a harmonic of the grid (:func:`mdpipe.process.mains.line_on_grid` of ``mains_hz``: a supply's
+    flanks), where that spread, times the order, is ``BEAT_STEADY_HZ`` or under; a harmonic of the grid (:func:`mdpipe.process.mains.line_on_grid` of ``mains_hz``: a supply's
     ripple on the gain of the clutter about the target). Which multiple of c (or fold of one) the line is the flanks
     do not tell."""
     reads = [line_contrast(power, prf_hz=prf_hz) for power in np.asarray(flanks, dtype=np.float64).T]
@@ -381,7 +382,7 @@ def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, body
     beats = [] if body_hz is None else [
         (abs(float(doppler.fold_hz(order * body_hz, prf_hz=prf_hz))),
          BEAT_BINS * resolution_hz + order * body_spread_hz / 2) for order in BEAT_ORDERS
-        if order * body_spread_hz <= BEAT_STEADY_BINS * resolution_hz]
+        if order * body_spread_hz <= BEAT_STEADY_HZ]
     read = set()
     for best in lines[np.argsort(shared[lines])[::-1]]:
         near = np.arange(max(best - 1, 0), min(best + 2, len(f_hz)))  # the line's own bin: both flanks' most there
