@@ -77,6 +77,9 @@ COMMON_LINE_DB = 10.0       # ... and what every range bin holds in common stand
 OWN_LINE_DB = 13.0          # ... and the target's own power not this far over the flanks' contrast there (else its
                             # own beats leak into them: two birds in one cell 17-20 dB over; the low-PRF sweep's
                             # drones read by the line -6.5 to +10.2 dB)
+LINE_MAX_SIDELOBE_DB = -30.0  # ... read only through a range window whose sidelobes stand this far down or further (a
+                              #     boxcar's, -13 dB, lets a sparrow's own beats into its flanks nearly as strong as in
+                              #     its bin: 3 of 3 draws read drones; Hann's and Hamming's, 9 of 9 birds)
 BEAT_ORDERS = (1, 2)        # ... nor within a few bins of the body's Doppler, or twice it, folded: the echo beats with
 BEAT_BINS = 2               #     a residue of static clutter and with its mirror image (a real IF's negative beat, its
                             #     Doppler reversed) in the flanks, through the range window's far sidelobes ...

@@ -54,6 +54,7 @@ FLANK_MIN_REACH_BINS = 4.0  # range flanks read where the fastest tips' flashes 
 FLANK_MAX_BINS = 64         # ... at most this many bins a side (a bounded memory: 8 B a bin a chirp) ...
 FLANK_KERNELS = 4           # ... and their kernels at this many of a track's bins kept at once
 MAIN_LOBE_BINS = {"hann": 2.0, "hamming": 2.0, "blackman": 3.0, "boxcar": 1.0}  # each range window's main lobe, +-
+PEAK_SIDELOBE_DB = {"hann": -31.5, "hamming": -42.7, "blackman": -58.1, "boxcar": -13.3}  # its highest sidelobe
 
 
 def share_cores(processes):
