@@ -692,12 +692,13 @@ def test_a_flank_line_is_read_from_13_db_up_and_off_half_the_prf():
     assert read(_flanks_with_a_line(0.3, line_hz=35.0)) is None
 
 
-def test_a_flank_line_the_target_s_own_power_holds_far_stronger_or_its_body_s_beat_is_no_flashes():
-    """A line both flanks share (15.1 dB) is no flashes' where the target's own power holds it 13 dB stronger or more
-    (its own beats, two bodies in one cell, leak into the flanks through the range window's sidelobes), nor where it
-    lies on a steady body's Doppler or twice it (its beats with clutter's residue and its mirror image); it is where
-    the own power holds it as weakly as the flanks, or the body's Doppler, times the order, swings over more than 50 Hz
-    (its beats smeared)."""
+def test_a_flank_line_that_the_window_s_sidelobes_carry_from_the_target_or_its_body_s_beat_is_no_flashes():
+    """A line both flanks share (15.1 dB) is no flashes' where its power there stands under ``LEAK_MARGIN_DB`` over
+    what the range window's sidelobes carry of the target's own power's line (twice their share in dB): the target's
+    line 10 times the flanks' in amplitude (their power's power 20 dB apart) is leakage through sidelobes of -10 dB
+    (a share that reaches -5 dB), not through Hann's -30 dB (-45 dB); as strong as the flanks' it is leakage through
+    neither. Nor is a line on a steady body's Doppler or twice it (its beats with clutter's residue and its mirror
+    image); it is where the body's Doppler, times the order, swings over more than 50 Hz (its beats smeared)."""
     from mdpipe.process.flashes import flank_line_hz
     prf_hz, n = 1600.0, 8192
     flanks = _flanks_with_a_line(0.18)
@@ -707,11 +708,24 @@ def test_a_flank_line_the_target_s_own_power_holds_far_stronger_or_its_body_s_be
     def read(**kw):
         return flank_line_hz(flanks, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0, **kw)
 
-    loud = rng.exponential(1.0, n) + 2.0 * np.sin(2 * np.pi * 300.0 * t / prf_hz)  # ~35 dB
-    quiet = rng.exponential(1.0, n) + 0.18 * np.sin(2 * np.pi * 300.0 * t / prf_hz)
-    assert read(own=loud) is None and read(own=quiet) == pytest.approx(300.0, abs=0.2)
+    loud = rng.exponential(1.0, n) + 1.8 * np.sin(2 * np.pi * 300.0 * t / prf_hz)
+    alike = rng.exponential(1.0, n) + 0.18 * np.sin(2 * np.pi * 300.0 * t / prf_hz)
+    assert read(own=loud, leak_db=-10.0) is None
+    assert read(own=loud, leak_db=-30.0) == pytest.approx(300.0, abs=0.2)
+    assert read(own=alike, leak_db=-10.0) == pytest.approx(300.0, abs=0.2)
     for body_hz in (300.0, -150.0, 1300.0, 500.0):  # 1300 Hz folds to -300; 500 Hz and twice it, -600, lie off
         expected = pytest.approx(300.0, abs=0.2) if body_hz == 500.0 else None
         assert read(body_hz=body_hz) == expected
     assert read(body_hz=-150.0, body_spread_hz=24.0) is None  # twice it swings over 48 Hz: its beat reaches 300
     assert read(body_hz=-150.0, body_spread_hz=26.0) == pytest.approx(300.0, abs=0.2)
+
+
+def test_a_range_window_s_sidelobes_carry_a_tabled_share_of_a_target_into_its_flanks():
+    """``ranging.flank_leak_db``: the greater share of a target's power in one of its flanks (bins 3-66 off, the
+    target anywhere within half a bin of its bin), at most: Hann -30.1 dB, Hamming -31.4, Blackman (bins 4-67) -53.6,
+    a boxcar (bins 2-65) -6.3, within 0.1 dB (each at its worst half a bin off: read at that offset alone, the same)."""
+    from mdpipe.process.ranging import MAIN_LOBE_BINS, flank_leak_db
+    for window, share_db in (("hann", -30.1), ("hamming", -31.4), ("blackman", -53.6), ("boxcar", -6.3)):
+        assert flank_leak_db(window, 128, MAIN_LOBE_BINS[window] + 0.5, 128.0) == pytest.approx(share_db, abs=0.1)
+        assert flank_leak_db(window, 128, MAIN_LOBE_BINS[window] + 0.5, 128.0, offsets=1) == pytest.approx(
+            share_db, abs=0.1)

@@ -2253,6 +2253,23 @@ def test_a_bird_s_own_beats_in_its_range_flanks_are_no_blade_flashes(tmp_path, b
     assert_wingbeat(row, 14.0, rel=0.05)
 
 
+def test_a_branch_s_lines_leaking_into_its_range_flanks_are_no_blade_flashes(tmp_path):
+    """Scene 85 of the default sweep drawn at seed 777: a branch swaying 2.6 Hz, its leaves fluttering 7.7 Hz, 55.6 m
+    out at 77 GHz, seen 3.8 s at a PRF of 9.77 kHz. Its phase swings lines over hundreds of Hz into its own power,
+    and the range window's sidelobes carry them into its flanks, which shared one 14.7 dB high at 87.5 Hz: read a
+    drone. The flanks hold that line's power 80 dB under its own bin's, where Hann's sidelobes carry 60 dB: none."""
+    radar = dict(f_start_hz=76.5e9, f_stop_hz=76.6e9, ramp_up_s=8.18571e-05, chirp_period_s=0.000102321,
+                 sample_rate_hz=1563700.6457350675, n_samples=128, n_chirps=37194, n_channels=1)
+    branch = {"name": "branch", "type": "branch", "rcs_m2": 0.0616975, "sway_amplitude_m": 0.034346,
+              "sway_hz": 2.63783, "leaves": 16, "leaf_flutter_hz": 7.68839,
+              "position_m": [55.5772, 6.55517, 2.48481]}
+    row = sweep_row(tmp_path, radar, branch, moving_snr_db=27.4008, seed=315648388,
+                    clutter=_static((78.9687, 6.59541, 1.00202), (75.5823, -12.2274, 5.35877),
+                                    (70.3084, 34.6643, 1.58017)))
+    assert row["class"] == "none" and "shares a line" not in row["notes"]
+    assert row["chopping_freq_hz_status"] == "no_flashes"
+
+
 def _static(*clutter):
     return [{"type": "static", "name": f"clutter{i}", "range_m": r, "azimuth_deg": a, "rcs_m2": rcs}
             for i, (r, a, rcs) in enumerate(clutter)]

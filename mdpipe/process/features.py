@@ -18,13 +18,12 @@ from mdpipe.process import combs, doppler, mains, spectral
 from mdpipe.process.classify import (DRONE_SPREAD_MPS, MIN_FLIGHT_DISTANCE_M, MIN_FLIGHT_SPEED_MPS,
                                      MIN_FLYING_WING_SPREAD_MPS, MIN_WING_SPREAD_MPS, ROTOR_EVIDENCE)
 from mdpipe.process.filters import least_squares_line, moving_average, running_median, triangular_average
-from mdpipe.process.flashes import (LINE_MAX_SIDELOBE_DB, MAX_POWER_PERIOD_S, RAMP_MIN_PERIOD_CHIRPS,
-                                    RAMP_SETTLE_SHARE, PowerPeriod, chirp_grid_drift, flank_flash_period,
-                                    flank_line_hz, flash_period, on_chirp_grid, period_of_power, power_period,
-                                    ramp_readable, ramp_floor, ramp_repeat, ramp_repeats_whole, ramp_train,
-                                    sides_alternate, whole_ratio_apart)
+from mdpipe.process.flashes import (MAX_POWER_PERIOD_S, RAMP_MIN_PERIOD_CHIRPS, RAMP_SETTLE_SHARE, PowerPeriod,
+                                    chirp_grid_drift, flank_flash_period, flank_line_hz, flash_period, on_chirp_grid,
+                                    period_of_power, power_period, ramp_readable, ramp_floor, ramp_repeat,
+                                    ramp_repeats_whole, ramp_train, sides_alternate, whole_ratio_apart)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
-from mdpipe.process.ranging import MAIN_LOBE_BINS, PEAK_SIDELOBE_DB
+from mdpipe.process.ranging import MAIN_LOBE_BINS
 from mdpipe.process.validity import OK, Measured, withheld
 from mdpipe.process.wingbeat import (MAX_WINGBEAT_HZ, MIN_WINGBEAT_HZ, STROKE_FRAME_S, Octave, ShortBursts,
                                      dwell_frames, flap_glide_share, overruns_span, readable_reach_hz, stroke_swing,
@@ -568,8 +567,7 @@ def _flashes_between(turn, ramp, *, prf_hz):
                    rotor_rates_hz=tuple(factor * r for r in turn.rotor_rates_hz))
 
 
-def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=(), own_power=None, body_hz=None, body_spread_hz=0.0,
-                       window="hann"):
+def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=(), own_power=None, body_hz=None, body_spread_hz=0.0):
     """``turn`` (no flashes found in the target's own bin), or blade flashes found in its range flanks (``flanks()``,
     :func:`mdpipe.process.flashes.flank_flash_period`): the chopping and rate withheld as ``ambiguous_period``, a
     drone's flashes seen, the period they recur at a whole multiple of the chopping period; where the flanks repeat
@@ -594,7 +592,7 @@ def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=(), own_power=None, bod
     period_s = flank_flash_period(read.power, prf_hz=prf_hz, min_period_s=1.0 / combs.MAX_CHOP_HZ)
     if period_s is None:
         return _line_in_flanks(turn, read, prf_hz=prf_hz, mains_hz=mains_hz, own_power=own_power, body_hz=body_hz,
-                               body_spread_hz=body_spread_hz, window=window)
+                               body_spread_hz=body_spread_hz)
     if mains.repeats_with_grid(period_s, mains_hz):
         return turn
     common = None if read.common is None else period_of_power(np.asarray(read.common, dtype=np.float64),
@@ -609,20 +607,17 @@ def _flashes_in_flanks(turn, flanks, *, prf_hz, mains_hz=(), own_power=None, bod
     return Rotation.withheld("ambiguous_period", note)
 
 
-def _line_in_flanks(turn, read, *, prf_hz, mains_hz=(), own_power=None, body_hz=None, body_spread_hz=0.0,
-                    window="hann"):
+def _line_in_flanks(turn, read, *, prf_hz, mains_hz=(), own_power=None, body_hz=None, body_spread_hz=0.0):
     """``turn``, or the chopping and rate withheld as ``ambiguous_period`` where a line that both range flanks' powers
     share (``read``: a :class:`~mdpipe.process.ranging.Flanks`) tells blade flashes
     (:func:`mdpipe.process.flashes.flank_line_hz`: rotors at rates apart, their trains interleaved), over the fastest
     wingbeat's harmonics (``1 / flashes.MAX_POWER_PERIOD_S``) and up to ``combs.MAX_CHOP_HZ``: not lit in every range
-    bin, nor far stronger in the target's own power ``own_power`` (per chirp), nor on the beats of its body's Doppler
-    ``body_hz`` (spread over ``body_spread_hz``), nor on the grid's harmonics (``mains_hz``). Not read through a
-    range ``window`` whose sidelobes stand under ``flashes.LINE_MAX_SIDELOBE_DB`` (a boxcar's)."""
-    if PEAK_SIDELOBE_DB[window] > LINE_MAX_SIDELOBE_DB:
-        return turn
+    bin, nor carried from the target's own power ``own_power`` (per chirp) by the range window's sidelobes
+    (``read.leak_db``), nor on the beats of its body's Doppler
+    ``body_hz`` (spread over ``body_spread_hz``), nor on the grid's harmonics (``mains_hz``)."""
     line_hz = flank_line_hz(read.power, prf_hz=prf_hz, min_hz=1.0 / MAX_POWER_PERIOD_S, max_hz=combs.MAX_CHOP_HZ,
-                            common=read.common, own=own_power, body_hz=body_hz, body_spread_hz=body_spread_hz,
-                            mains_hz=mains_hz)
+                            common=read.common, own=own_power, leak_db=read.leak_db, body_hz=body_hz,
+                            body_spread_hz=body_spread_hz, mains_hz=mains_hz)
     if line_hz is None:
         return turn
     note = (f"rotation not estimable: the power of the range bins either side of the target, where a long ramp "
@@ -2055,8 +2050,7 @@ def analyse_target(signal, *, prf_hz, wavelength_m, noise_power, params, track=N
         spread_hz = float(np.subtract(*np.percentile(doppler.fold_hz(np.asarray(body.track_hz) - body_doppler_hz,
                                                                       prf_hz=prf_hz), BODY_SPREAD_PERCENTILES)))
         turn = _flashes_in_flanks(turn, flanks, prf_hz=prf_hz, mains_hz=params.mains_frequencies_hz,
-                                  own_power=np.abs(s) ** 2, body_hz=body_doppler_hz, body_spread_hz=spread_hz,
-                                  window=params.range_window)
+                                  own_power=np.abs(s) ** 2, body_hz=body_doppler_hz, body_spread_hz=spread_hz)
     if turn.chopping.value is not None or (turn.chopping.status in ROTOR_EVIDENCE and not wings_may_repeat):
         beat = flaps = stroke = withheld("not_applicable", "")  # blade flashes exclude a bird
     elif turn.chopping.status == "not_rotor":  # a comb spaced over any wingbeat (combs.MIN_CHOP_HZ up)

@@ -74,12 +74,10 @@ FLANK_LINE_DB = 13.0        # a line both range flanks' powers share stands this
                             # (noise: 2.6e-5 a bin a flank over a median of 33 bins, measured; both within a bin of
                             # one frequency about 9 times its square, 6e-9 a bin)
 COMMON_LINE_DB = 10.0       # ... and what every range bin holds in common stands under this there (else bursts)
-OWN_LINE_DB = 13.0          # ... and the target's own power not this far over the flanks' contrast there (else its
-                            # own beats leak into them: two birds in one cell 17-20 dB over; the low-PRF sweep's
-                            # drones read by the line -6.5 to +10.2 dB)
-LINE_MAX_SIDELOBE_DB = -30.0  # ... read only through a range window whose sidelobes stand this far down or further (a
-                              #     boxcar's, -13 dB, lets a sparrow's own beats into its flanks nearly as strong as in
-                              #     its bin: 3 of 3 draws read drones; Hann's and Hamming's, 9 of 9 birds)
+LEAK_MARGIN_DB = 15.0       # ... and the flanks hold the line's power (the weaker flank's over the target's own power's)
+                            # this far over what the range window's sidelobes carry of the target's own echo into them,
+                            # twice their share in dB, a power's power (Hann: -60 dB; a branch's lines -80 dB, its own
+                            # beats leaking; the low-PRF sweep's drones read by the line -35 to +11 dB)
 BEAT_ORDERS = (1, 2)        # ... nor within a few bins of the body's Doppler, or twice it, folded: the echo beats with
 BEAT_BINS = 2               #     a residue of static clutter and with its mirror image (a real IF's negative beat, its
                             #     Doppler reversed) in the flanks, through the range window's far sidelobes ...
@@ -323,15 +321,24 @@ def flank_flash_period(flanks, *, prf_hz, min_period_s):
     return min(periods)
 
 
-def line_contrast(power, *, prf_hz):
-    """(f_hz, contrast): a power's (per chirp) Hann periodogram, its mean taken out, over its running median
-    (``LINE_MEDIAN_SHARE`` of the bins, within ``LINE_MEDIAN_BINS``), from 0 to PRF / 2: noise stands about ``Exp(1) /
-    ln 2`` there, a line far over it. None for a power that does not vary (its rounding would read as lines)."""
+def power_spectrum(power):
+    """A power's (per chirp) Hann periodogram, its mean taken out, from 0 to PRF / 2; None for a power that does not
+    vary (its rounding would read as lines)."""
     x = np.asarray(power, dtype=np.float64)
     n = len(x)
     if n < 2 or not np.var(x) > 1e-12 * np.mean(x) ** 2:
         return None
-    spectrum = np.abs(np.fft.rfft((x - x.mean()) * periodic_hann(n))) ** 2
+    return np.abs(np.fft.rfft((x - x.mean()) * periodic_hann(n))) ** 2
+
+
+def line_contrast(power, *, prf_hz):
+    """(f_hz, contrast): a power's :func:`power_spectrum` over its running median (``LINE_MEDIAN_SHARE`` of the bins,
+    within ``LINE_MEDIAN_BINS``): noise stands about ``Exp(1) / ln 2`` there, a line far over it. None for a power
+    that does not vary."""
+    spectrum = power_spectrum(power)
+    if spectrum is None:
+        return None
+    n = len(power)
     width = int(np.clip(len(spectrum) * LINE_MEDIAN_SHARE, *LINE_MEDIAN_BINS)) | 1
     floor = np.maximum(running_median(spectrum, width), np.finfo(float).tiny)
     return np.fft.rfftfreq(n, 1.0 / prf_hz), spectrum / floor
@@ -347,8 +354,16 @@ def _lit(power, *, prf_hz):
     return lambda f_hz: float(np.interp(f_hz, f_read_hz, contrast))
 
 
-def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, body_hz=None, body_spread_hz=0.0,
-                  mains_hz=()):
+def _leaked(flank_spectra, own_spectrum, line, *, leak_db):
+    """Whether the line at bin ``line`` holds no more power in the weaker flank (its most within a bin) than
+    ``LEAK_MARGIN_DB`` over twice ``leak_db`` of the target's own power's there: its own echo's share."""
+    near = slice(max(line - 1, 0), line + 2)
+    in_flanks = min(spectrum[near].max() for spectrum in flank_spectra)
+    return in_flanks < 10 ** ((2 * leak_db + LEAK_MARGIN_DB) / 10) * own_spectrum[near].max()
+
+
+def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, leak_db=None, body_hz=None,
+                  body_spread_hz=0.0, mains_hz=()):
     """The frequency (Hz) of the strongest line that the powers of both range flanks of a target share and that is
     a blade flashes' (``flanks`` (n_chirps, 2): :func:`mdpipe.process.ranging.flank_powers`), else None.
 
@@ -363,10 +378,12 @@ def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, body
     A line stands ``FLANK_LINE_DB`` over each flank's local median (:func:`line_contrast`) within a bin of one
     frequency, between ``min_hz`` and ``max_hz`` and off ``PRF / 2`` (``NYQUIST_GUARD``), and is none of these:
     what every range bin holds in common (``common`` (n_chirps,)) lit ``COMMON_LINE_DB`` there (another radar's
-    bursts light every bin alike; a drone whose flashes light every bin keeps the reading of its own); the target's
-    own power (``own`` (n_chirps,), its bin's) holding it ``OWN_LINE_DB`` or more over the flanks' contrast (its
-    echo's own beats, two bodies in one range cell, leak into both flanks through the range window's sidelobes, far
-    weaker there than in its bin); within ``BEAT_BINS`` bins (and half the body's spread ``body_spread_hz`` times the
+    bursts light every bin alike; a drone whose flashes light every bin keeps the reading of its own); a line whose
+    power in the weaker flank stands under ``LEAK_MARGIN_DB`` over what the range window's sidelobes carry into a
+    flank of the target's own power's line (``own`` (n_chirps,), its bin's power; ``leak_db``, the sidelobes' share
+    of its echo in one flank, :func:`mdpipe.process.ranging.flank_leak_db`, twice in dB for a power's power): the
+    target's own beats (a branch's lines, two birds in one range cell) leaking into the flanks, where flashes a ramp
+    moves off the target stand in them as strong as in its bin or stronger; within ``BEAT_BINS`` bins (and half the body's spread ``body_spread_hz`` times the
     order) of the body's Doppler ``body_hz`` or twice it, folded (``BEAT_ORDERS``: a bird's echo beats there with a
     residue of static clutter and with its mirror image, a Hamming window's far sidelobes bringing both into the
     flanks), where that spread, times the order, is ``BEAT_STEADY_HZ`` or under; a harmonic of the grid (:func:`mdpipe.process.mains.line_on_grid` of ``mains_hz``: a supply's
@@ -380,7 +397,8 @@ def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, body
     shared = np.minimum.reduce([running_max(np.where(searched, contrast, 0.0), 3) for _, contrast in reads])
     lines = np.flatnonzero(searched & (shared >= 10 ** (FLANK_LINE_DB / 10)))
     common_lit = None if common is None else _lit(common, prf_hz=prf_hz)
-    own_lit = None if own is None else _lit(own, prf_hz=prf_hz)
+    own_spectrum = None if own is None or leak_db is None else power_spectrum(own)
+    flank_spectra = [power_spectrum(power) for power in np.asarray(flanks, dtype=np.float64).T]
     resolution_hz = prf_hz / len(np.asarray(flanks))
     beats = [] if body_hz is None else [
         (abs(float(doppler.fold_hz(order * body_hz, prf_hz=prf_hz))),
@@ -395,7 +413,7 @@ def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, body
         read.add(line)
         line_hz = float(f_hz[line])
         if ((common_lit is not None and common_lit(line_hz) >= 10 ** (COMMON_LINE_DB / 10))
-                or (own_lit is not None and own_lit(line_hz) >= 10 ** (OWN_LINE_DB / 10) * shared[line])
+                or (own_spectrum is not None and _leaked(flank_spectra, own_spectrum, line, leak_db=leak_db))
                 or any(abs(line_hz - beat_hz) <= reach_hz for beat_hz, reach_hz in beats)
                 or mains.line_on_grid(line_hz, mains_hz, prf_hz=prf_hz, resolution_hz=resolution_hz)):
             continue

@@ -90,7 +90,7 @@ def flank_views(reader, track_bins, weight, process, common=None):
     return functools.cache(lambda: ranging.Flanks(
         ranging.flank_powers(reader, track_bins, weight, inner_bins=bins[0], outer_bins=bins[1],
                              window=process.range_window, zero_pad=process.zero_pad, chunk_chirps=process.chunk_chirps),
-        common))
+        common, ranging.flank_leak_db(process.range_window, reader.params.n_samples, *bins)))
 
 
 def analysed_row(reader, detection, target, track_bins, *, process, noise_power, base, capture_notes, undisturbed=True,

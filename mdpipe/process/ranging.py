@@ -54,7 +54,7 @@ FLANK_MIN_REACH_BINS = 4.0  # range flanks read where the fastest tips' flashes 
 FLANK_MAX_BINS = 64         # ... at most this many bins a side (a bounded memory: 8 B a bin a chirp) ...
 FLANK_KERNELS = 4           # ... and their kernels at this many of a track's bins kept at once
 MAIN_LOBE_BINS = {"hann": 2.0, "hamming": 2.0, "blackman": 3.0, "boxcar": 1.0}  # each range window's main lobe, +-
-PEAK_SIDELOBE_DB = {"hann": -31.5, "hamming": -42.7, "blackman": -58.1, "boxcar": -13.3}  # its highest sidelobe
+LEAK_OFFSETS = 21  # a target's positions within half a bin of its bin at which its sidelobes' share is read
 
 
 def share_cores(processes):
@@ -448,6 +448,7 @@ class Flanks:
 
     power: np.ndarray
     common: np.ndarray = None
+    leak_db: float = None  # the range window's sidelobes' share of the target's power in one flank, at most (dB)
 
 
 def flank_bins(params, window):
@@ -460,6 +461,24 @@ def flank_bins(params, window):
         return None
     lobe = MAIN_LOBE_BINS[window]
     return lobe + 0.5, reach + lobe
+
+
+@functools.lru_cache(maxsize=16)
+def flank_leak_db(window, n_samples, inner_bins, outer_bins, *, offsets=LEAK_OFFSETS):
+    """The greater share (dB) of a target's power that the range ``window``'s sidelobes put in one of its flanks (the
+    bins :func:`flank_offsets` reads, either side), the target anywhere within half a bin of the bin its track is
+    rounded to (``offsets`` positions): the flank powers hold a target's own echo at this share or less (Hann over
+    3-66 bins: -30.1 dB, the target half a bin off; a boxcar's: -6.3 dB)."""
+    taper = range_window(window, n_samples)
+    samples = np.arange(n_samples)
+    bins = flank_offsets(inner_bins, outer_bins)
+    worst = 0.0
+    for offset in np.linspace(-0.5, 0.5, offsets):
+        response = np.abs(np.exp(-2j * np.pi * np.outer(np.concatenate([[0], bins, -bins]) - offset, samples)
+                                 / n_samples) @ taper) ** 2
+        own, near, far = response[0], response[1:len(bins) + 1].sum(), response[len(bins) + 1:].sum()
+        worst = max(worst, near / own, far / own)
+    return float(10 * np.log10(max(worst, np.finfo(float).tiny)))
 
 
 def flank_offsets(inner_bins, outer_bins):
