@@ -17,8 +17,8 @@ PASS2_BINS_PER_TARGET = 64  # bins a target's path may cross (a bird at 15 m/s o
 ANALYSIS_BYTES_PER_CHIRP = 1536  # per target: complex128 copies and spectrograms of the slow-time signal (the flash
                                  # edges' 8x zero-padded at a hop of 1/8 frame: 512 B a chirp, and 8 MB of transforms)
 FLASH_VIEW_BYTES = 40  # per chirp and view (parts of the ramp, range sides): complex64, complex128 demodulated, a stack
-FLANK_LINE_BYTES = 48  # per chirp, where range flanks are read: the target's own power (8 B) and the line spectra of
-                       # it, the flanks and the common mode (flashes.flank_line_hz: measured 36 B a chirp, beside the
+FLANK_LINE_BYTES = 64  # per chirp, where range flanks are read: the target's own power (8 B) and the spectra of it,
+                       # the flanks and the common mode (flashes.flank_line_hz: measured 48 B a chirp, beside the
                        # running median's chunk of windows)
 RAMP_SLOT_BYTES = 160  # per slot of the ramp parts' grid: the grid, its mask and trend, the autocorrelation's FFTs
 BASE_BYTES = 64 * 2**20  # the interpreter, numpy, h5py and BLAS, before any array (measured: 55-60 MB)
