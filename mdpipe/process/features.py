@@ -613,8 +613,8 @@ def _line_in_flanks(turn, read, *, prf_hz, mains_hz=(), own_power=None, body_hz=
     (:func:`mdpipe.process.flashes.flank_line_hz`: rotors at rates apart, their trains interleaved), over the fastest
     wingbeat's harmonics (``1 / flashes.MAX_POWER_PERIOD_S``) and up to ``combs.MAX_CHOP_HZ``: not lit in every range
     bin, nor carried from the target's own power ``own_power`` (per chirp) by the range window's sidelobes
-    (``read.leak_db``), nor on the beats of its body's Doppler
-    ``body_hz`` (spread over ``body_spread_hz``), nor on the grid's harmonics (``mains_hz``)."""
+    (``read.leak_db``), nor on the beats of its body's Doppler ``body_hz`` (spread over ``body_spread_hz``), nor on
+    the grid's harmonics (``mains_hz``)."""
     line_hz = flank_line_hz(read.power, prf_hz=prf_hz, min_hz=1.0 / MAX_POWER_PERIOD_S, max_hz=combs.MAX_CHOP_HZ,
                             common=read.common, own=own_power, leak_db=read.leak_db, body_hz=body_hz,
                             body_spread_hz=body_spread_hz, mains_hz=mains_hz)

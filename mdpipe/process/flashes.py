@@ -383,12 +383,13 @@ def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, leak
     flank of the target's own power's line (``own`` (n_chirps,), its bin's power; ``leak_db``, the sidelobes' share
     of its echo in one flank, :func:`mdpipe.process.ranging.flank_leak_db`, twice in dB for a power's power): the
     target's own beats (a branch's lines, two birds in one range cell) leaking into the flanks, where flashes a ramp
-    moves off the target stand in them as strong as in its bin or stronger; within ``BEAT_BINS`` bins (and half the body's spread ``body_spread_hz`` times the
-    order) of the body's Doppler ``body_hz`` or twice it, folded (``BEAT_ORDERS``: a bird's echo beats there with a
-    residue of static clutter and with its mirror image, a Hamming window's far sidelobes bringing both into the
-    flanks), where that spread, times the order, is ``BEAT_STEADY_HZ`` or under; a harmonic of the grid (:func:`mdpipe.process.mains.line_on_grid` of ``mains_hz``: a supply's
-    ripple on the gain of the clutter about the target). Which multiple of c (or fold of one) the line is the flanks
-    do not tell."""
+    moves off the target stand in them as strong as in its bin or stronger; within ``BEAT_BINS`` bins (and half the
+    body's spread ``body_spread_hz`` times the order) of the body's Doppler ``body_hz`` or twice it, folded
+    (``BEAT_ORDERS``: a bird's echo beats there with a residue of static clutter and with its mirror image, a Hamming
+    window's far sidelobes bringing both into the flanks), where that spread, times the order, is ``BEAT_STEADY_HZ``
+    or under; a harmonic of the grid (:func:`mdpipe.process.mains.line_on_grid` of ``mains_hz``: a supply's ripple
+    on the gain of the clutter about the target). Which multiple of c (or fold of one) the line is the flanks do not
+    tell."""
     reads = [line_contrast(power, prf_hz=prf_hz) for power in np.asarray(flanks, dtype=np.float64).T]
     if any(read is None for read in reads):
         return None
