@@ -270,7 +270,7 @@ def power_period(micro_signal, *, prf_hz, min_period_s):
 
 def period_of_power(power, *, prf_hz, min_period_s):
     """:func:`power_period` of a ``power`` (per chirp) already formed."""
-    if not np.var(power) > 1e-12 * np.mean(power) ** 2:
+    if not _varies(power):
         return None  # a constant power (its rounding would be normalised to unit variance)
     r = autocorrelation(power, signed=True)
     min_period_s = max(min_period_s, MIN_SHAPE_CHIRPS / prf_hz)
@@ -321,27 +321,34 @@ def flank_flash_period(flanks, *, prf_hz, min_period_s):
     return min(periods)
 
 
-def power_spectrum(power):
+def _varies(power):
+    """Whether a power (per chirp) varies: a constant one's rounding would read as a repeat, or as lines."""
+    return len(power) >= 2 and np.var(power) > 1e-12 * np.mean(power) ** 2
+
+
+def _envelope_spectrum(power):
     """A power's (per chirp) Hann periodogram, its mean taken out, from 0 to PRF / 2; None for a power that does not
-    vary (its rounding would read as lines)."""
+    vary."""
     x = np.asarray(power, dtype=np.float64)
-    n = len(x)
-    if n < 2 or not np.var(x) > 1e-12 * np.mean(x) ** 2:
+    if not _varies(x):
         return None
-    return np.abs(np.fft.rfft((x - x.mean()) * periodic_hann(n))) ** 2
+    return np.abs(np.fft.rfft((x - x.mean()) * periodic_hann(len(x)))) ** 2
+
+
+def _over_median(spectrum):
+    """A spectrum over its running median (``LINE_MEDIAN_SHARE`` of the bins, within ``LINE_MEDIAN_BINS``): noise
+    stands about ``Exp(1) / ln 2`` there, a line far over it."""
+    width = int(np.clip(len(spectrum) * LINE_MEDIAN_SHARE, *LINE_MEDIAN_BINS)) | 1
+    return spectrum / np.maximum(running_median(spectrum, width), np.finfo(float).tiny)
 
 
 def line_contrast(power, *, prf_hz):
-    """(f_hz, contrast): a power's :func:`power_spectrum` over its running median (``LINE_MEDIAN_SHARE`` of the bins,
-    within ``LINE_MEDIAN_BINS``): noise stands about ``Exp(1) / ln 2`` there, a line far over it. None for a power
-    that does not vary."""
-    spectrum = power_spectrum(power)
+    """(f_hz, contrast): a power's :func:`_envelope_spectrum` over its running median (:func:`_over_median`); None for
+    a power that does not vary."""
+    spectrum = _envelope_spectrum(power)
     if spectrum is None:
         return None
-    n = len(power)
-    width = int(np.clip(len(spectrum) * LINE_MEDIAN_SHARE, *LINE_MEDIAN_BINS)) | 1
-    floor = np.maximum(running_median(spectrum, width), np.finfo(float).tiny)
-    return np.fft.rfftfreq(n, 1.0 / prf_hz), spectrum / floor
+    return np.fft.rfftfreq(len(power), 1.0 / prf_hz), _over_median(spectrum)
 
 
 def _lit(power, *, prf_hz):
@@ -390,17 +397,18 @@ def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, leak
     or under; a harmonic of the grid (:func:`mdpipe.process.mains.line_on_grid` of ``mains_hz``: a supply's ripple
     on the gain of the clutter about the target). Which multiple of c (or fold of one) the line is the flanks do not
     tell."""
-    reads = [line_contrast(power, prf_hz=prf_hz) for power in np.asarray(flanks, dtype=np.float64).T]
-    if any(read is None for read in reads):
+    powers = np.asarray(flanks, dtype=np.float64).T
+    flank_spectra = [_envelope_spectrum(power) for power in powers]
+    if any(spectrum is None for spectrum in flank_spectra):
         return None
-    f_hz = reads[0][0]
+    contrasts = [_over_median(spectrum) for spectrum in flank_spectra]
+    f_hz = np.fft.rfftfreq(powers.shape[1], 1.0 / prf_hz)
     searched = (f_hz >= min_hz) & (f_hz <= min(max_hz, prf_hz / 2 * (1 - NYQUIST_GUARD)))
-    shared = np.minimum.reduce([running_max(np.where(searched, contrast, 0.0), 3) for _, contrast in reads])
+    shared = np.minimum.reduce([running_max(np.where(searched, contrast, 0.0), 3) for contrast in contrasts])
     lines = np.flatnonzero(searched & (shared >= 10 ** (FLANK_LINE_DB / 10)))
     common_lit = None if common is None else _lit(common, prf_hz=prf_hz)
-    own_spectrum = None if own is None or leak_db is None else power_spectrum(own)
-    flank_spectra = [power_spectrum(power) for power in np.asarray(flanks, dtype=np.float64).T]
-    resolution_hz = prf_hz / len(np.asarray(flanks))
+    own_spectrum = None if own is None or leak_db is None else _envelope_spectrum(own)
+    resolution_hz = prf_hz / powers.shape[1]
     beats = [] if body_hz is None else [
         (abs(float(doppler.fold_hz(order * body_hz, prf_hz=prf_hz))),
          BEAT_BINS * resolution_hz + order * body_spread_hz / 2) for order in BEAT_ORDERS
@@ -408,7 +416,7 @@ def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, leak
     read = set()
     for best in lines[np.argsort(shared[lines])[::-1]]:
         near = np.arange(max(best - 1, 0), min(best + 2, len(f_hz)))  # the line's own bin: both flanks' most there
-        line = int(near[np.argmax(np.prod([contrast[near] for _, contrast in reads], axis=0))])
+        line = int(near[np.argmax(np.prod([contrast[near] for contrast in contrasts], axis=0))])
         if line in read or not searched[line]:
             continue
         read.add(line)
