@@ -18,7 +18,7 @@ ANALYSIS_BYTES_PER_CHIRP = 1536  # per target: complex128 copies and spectrogram
                                  # edges' 8x zero-padded at a hop of 1/8 frame: 512 B a chirp, and 8 MB of transforms)
 FLASH_VIEW_BYTES = 40  # per chirp and view (parts of the ramp, range sides): complex64, complex128 demodulated, a stack
 FLANK_LINE_BYTES = 64  # per chirp, where range flanks are read: the target's own power (8 B) and the spectra of it,
-                       # the flanks and the common mode (flashes.flank_line_hz: measured 48 B a chirp, beside the
+                       # the flanks and the common mode (flashes.flank_line_hz: measured 40 B a chirp, beside the
                        # running median's chunk of windows)
 RAMP_SLOT_BYTES = 160  # per slot of the ramp parts' grid: the grid, its mask and trend, the autocorrelation's FFTs
 BASE_BYTES = 64 * 2**20  # the interpreter, numpy, h5py and BLAS, before any array (measured: 55-60 MB)
