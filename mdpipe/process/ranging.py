@@ -470,12 +470,10 @@ def flank_leak_db(window, n_samples, inner_bins, outer_bins, *, offsets=LEAK_OFF
     rounded to (``offsets`` positions): the flank powers hold a target's own echo at this share or less (Hann over
     3-66 bins: -30.1 dB, the target half a bin off; a boxcar's: -6.3 dB)."""
     taper = range_window(window, n_samples)
-    samples = np.arange(n_samples)
     bins = flank_offsets(inner_bins, outer_bins)
     worst = 0.0
-    for offset in np.linspace(-0.5, 0.5, offsets):
-        response = np.abs(np.exp(-2j * np.pi * np.outer(np.concatenate([[0], bins, -bins]) - offset, samples)
-                                 / n_samples) @ taper) ** 2
+    for offset in np.linspace(-0.5, 0.5, offsets):  # a tone off its bin read by the flanks' kernels (centred_rows)
+        response = np.abs(centred_rows(taper, np.concatenate([[0], bins, -bins]) - offset).sum(axis=1)) ** 2
         own, near, far = response[0], response[1:len(bins) + 1].sum(), response[len(bins) + 1:].sum()
         worst = max(worst, near / own, far / own)
     return float(10 * np.log10(max(worst, np.finfo(float).tiny)))
