@@ -1,6 +1,8 @@
 """Flash trains: a sub-period is taken only when the flash phases repeat with it, not when they are spread
 evenly (rotors at slightly different rates drift through each other's phases over a dwell)."""
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -597,6 +599,11 @@ def _interleaved_flank(n, *, seed, flash=6.0, ramp_share=0.8, periods=FOUR_ROTOR
     return power
 
 
+def _flank_line(flanks, *, prf_hz=1600.0, **kw):
+    """:func:`mdpipe.process.flashes.flank_line_hz` of ``flanks`` between 40 Hz and 3 kHz, as the features read it."""
+    return flashes.flank_line_hz(flanks, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0, **kw)
+
+
 def _near_a_multiple(f_hz, choppings_hz, *, prf_hz, most=3, rel=0.003):
     """Whether ``f_hz`` lies within ``rel`` of a multiple (up to ``most``) of one of ``choppings_hz``, folded."""
     return any(abs(abs((k * c + prf_hz / 2) % prf_hz - prf_hz / 2) - f_hz) <= rel * k * c
@@ -607,11 +614,11 @@ def test_interleaved_rotors_on_both_flanks_share_a_line_where_their_power_shows_
     """Four rotors' flash trains 0.6-3.7 % apart on both range flanks (1.6 kHz, 4096 chirps, noise and flash energies
     drawn apart): their power's autocorrelation shows no period (:func:`flank_flash_period`), but both flanks'
     spectra share a line within 0.3 % of a multiple (up to 3) of one rotor's chopping frequency, 219-227 Hz."""
-    from mdpipe.process.flashes import flank_flash_period, flank_line_hz
+    from mdpipe.process.flashes import flank_flash_period
     prf_hz = 1600.0
     flanks = np.stack([_interleaved_flank(4096, seed=5), _interleaved_flank(4096, seed=6)], axis=1)
     assert flank_flash_period(flanks, prf_hz=prf_hz, min_period_s=1 / 3000) is None
-    line_hz = flank_line_hz(flanks, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0)
+    line_hz = _flank_line(flanks, prf_hz=prf_hz)
     assert line_hz is not None
     assert _near_a_multiple(line_hz, [prf_hz / p for p in FOUR_ROTORS_CHIRPS], prf_hz=prf_hz)
 
@@ -621,13 +628,9 @@ def test_a_line_on_one_flank_only_in_the_common_mode_at_half_the_prf_or_on_noise
     noise; what every range bin holds in common carries the same flashes (another radar's bursts, or a drone lighting
     every bin); both flanks swell on alternate chirps (two transmitters in turn: a line at PRF / 2); both swell at a
     wingbeat's pace (under ``min_hz``). The shared flashes, with a common mode of noise, are found."""
-    from mdpipe.process.flashes import flank_line_hz
     prf_hz, n = 1600.0, 4096
     rng = np.random.default_rng(11)
-
-    def line(power, common=None):
-        return flank_line_hz(power, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0, common=common)
-
+    line = functools.partial(_flank_line, prf_hz=prf_hz)
     for _ in range(10):
         assert line(rng.exponential(1.0, (n, 2))) is None
     flashes = _interleaved_flank(n, seed=5)
@@ -648,14 +651,13 @@ def test_interleaved_rotors_in_the_flanks_are_a_drone_s_and_a_ripple_s_line_on_t
     on the gain of the clutter about the target) share a line there: under that grid the rotation stays as the
     target's own bin read it; told there is no grid, the line makes it a drone's."""
     from mdpipe.process.features import Rotation, _flashes_in_flanks
-    from mdpipe.process.flashes import flank_line_hz
     from mdpipe.process.ranging import Flanks
     prf_hz, n = 1600.0, 4096
     flanks = Flanks(np.stack([_interleaved_flank(n, seed=5), _interleaved_flank(n, seed=6)], axis=1))
     turn = Rotation.withheld("no_flashes", "rotation not estimable: no periodic blade flashes")
     seen = _flashes_in_flanks(turn, lambda: flanks, prf_hz=prf_hz, mains_hz=(50.0, 60.0))
     assert seen.chopping.status == seen.rate.status == "ambiguous_period" and seen.rate.value is None
-    line_hz = flank_line_hz(flanks.power, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0)
+    line_hz = _flank_line(flanks.power, prf_hz=prf_hz)
     assert f"shares a line at {line_hz:.4g} Hz" in seen.chopping.note
     swell = 1.0 + 0.5 * np.sin(2 * np.pi * 100.0 * np.arange(n) / prf_hz)
     ripple = Flanks(np.random.default_rng(3).exponential(1.0, (n, 2)) * swell[:, None])
@@ -677,12 +679,9 @@ def test_a_flank_line_is_read_from_13_db_up_and_off_half_the_prf():
     """A line on both flanks standing 11.7 dB over their medians (the weaker flank's) is not read, one of 15.1 dB is,
     at its frequency; the same line at 0.99 of PRF / 2 (within ``NYQUIST_GUARD``) is not, at 0.95 of it it is; under
     ``min_hz`` it is not."""
-    from mdpipe.process.flashes import _lit, flank_line_hz
+    from mdpipe.process.flashes import _lit
     prf_hz = 1600.0
-
-    def read(flanks, **kw):
-        return flank_line_hz(flanks, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0, **kw)
-
+    read = functools.partial(_flank_line, prf_hz=prf_hz)
     weak, strong = _flanks_with_a_line(0.13), _flanks_with_a_line(0.18)
     assert [round(10 * np.log10(min(_lit(f[:, i], prf_hz=prf_hz)(300.0) for i in (0, 1))), 1)
             for f in (weak, strong)] == [11.7, 15.1]
@@ -699,15 +698,11 @@ def test_a_flank_line_that_the_window_s_sidelobes_carry_from_the_target_or_its_b
     (a share that reaches -5 dB), not through Hann's -30 dB (-45 dB); as strong as the flanks' it is leakage through
     neither. Nor is a line on a steady body's Doppler or twice it (its beats with clutter's residue and its mirror
     image); it is where the body's Doppler, times the order, swings over more than 50 Hz (its beats smeared)."""
-    from mdpipe.process.flashes import flank_line_hz
     prf_hz, n = 1600.0, 8192
     flanks = _flanks_with_a_line(0.18)
     t = np.arange(n)
     rng = np.random.default_rng(4)
-
-    def read(**kw):
-        return flank_line_hz(flanks, prf_hz=prf_hz, min_hz=40.0, max_hz=3000.0, **kw)
-
+    read = functools.partial(_flank_line, flanks, prf_hz=prf_hz)
     loud = rng.exponential(1.0, n) + 1.8 * np.sin(2 * np.pi * 300.0 * t / prf_hz)
     alike = rng.exponential(1.0, n) + 0.18 * np.sin(2 * np.pi * 300.0 * t / prf_hz)
     assert read(own=loud, leak_db=-10.0) is None
