@@ -594,19 +594,21 @@ def _looks(frames):
     In the weak look a row set is read only with ``MIN_WING_ROWS`` wing rows in it: the body's row alone, a
     line 0.4 bin off 0 Hz with weak wings 3 Hz in it, repeated at 1.23 Hz (its beat with the wings' lines);
     rows of single bins keep theirs (a goose of the evaluation sweep reads its wingbeat in the rows lit in half
-    its frames, which hold under three wing rows). (:func:`wingbeat` reads none unless ``MIN_WING_ROWS`` rows off the body line are lit in a quarter of the
-    frames: a modulation of the body line alone (its main lobe's three rows) is no wing, and the line's beat with
-    another (a residual line at 0 Hz, a second body) repeats it as evenly.)
+    its frames, which hold under three wing rows); the body line's rows alone only where their pattern carries over
+    a hop (:func:`_row_set_period`). (:func:`wingbeat` reads none unless ``MIN_WING_ROWS`` rows off the body line are
+    lit in a quarter of the frames: a modulation of the body line alone (its main lobe's three rows) is no wing, and
+    the line's beat with another (a residual line at 0 Hz, a second body) repeats it as evenly.)
     """
     single = None
     for index, row_percentile in enumerate(SIGNAL_ROW_PERCENTILES):
-        if frames.weak and len(frames.lit_rows(row_percentile, wings_only=True)) < MIN_WING_ROWS:
+        wing_rows = len(frames.lit_rows(row_percentile, wings_only=True))
+        if frames.weak and wing_rows < MIN_WING_ROWS:
             continue  # the body's row with weak wings' beat in it (see above)
-        found = _row_set_period(frames, row_percentile)
+        found = _row_set_period(frames, row_percentile, body_only=wing_rows == 0)
         if found is None:
             continue
         if found.repeats >= 2 and found.strength >= MIN_PERIODICITY:
-            if len(frames.lit_rows(row_percentile, wings_only=True)) < MIN_WING_ROWS:
+            if wing_rows < MIN_WING_ROWS:
                 found = _stroke_signed(found, frames, SIGNAL_ROW_PERCENTILES[index + 1:])
             return _within_cycle(found, frames)
         if found.repeats == 1 and found.strength >= MIN_SINGLE_PERIODICITY and single is None:
@@ -616,11 +618,31 @@ def _looks(frames):
     return _gated_period(frames)
 
 
-def _row_set_period(frames, row_percentile):
-    """The wingbeat period (:func:`_period`) in the rows of ``frames`` lit in ``100 - row_percentile`` % of them."""
+def _row_set_period(frames, row_percentile, *, body_only=False):
+    """The wingbeat period (:func:`_period`) in the rows of ``frames`` lit in ``100 - row_percentile`` % of them.
+
+    ``body_only``: the rows hold no wing row, the body line's main lobe alone. Their pattern is read only where it
+    carries over a hop, its autocorrelation there at least what noise's power keeps between two frames that share
+    their chirps (:func:`speckle_carry`, 0.43 for frames a quarter apart): the wings crossing the body's Doppler
+    modulate those rows as slowly as they move (a gull's body rows at 0.72-0.80 a hop on, repeating at half its beat),
+    while rows lit near their threshold flicker from frame to frame (a heron seen over 1.3 beats: 0.04 a hop on, and
+    a repeat at 10.6 Hz among the flicker, read `ok` for 2.06 Hz). Limit: a wing crossing the body's Doppler in a
+    flash shorter than a hop lights those rows as briefly (a crow of the low-PRF bird sweep at seed 999: 0.20 a hop
+    on, its half-beat standing 0.56; given as 4.12 Hz or twice it before, no wingbeat now)."""
     r = pattern_autocorrelation(frames.spec, detrend_frames=int(2 * frames.frame_rate / MIN_WINGBEAT_HZ),
                                 noise_level=frames.noise_level, row_percentile=row_percentile, lit_db=frames.lit_db)
+    if body_only and not (len(r) > 1 and r[1] >= speckle_carry(frames.spec)):
+        return None
     return _period(r, frame_rate=frames.frame_rate, frames_per_window=_frames_per_window(frames.spec))
+
+
+def speckle_carry(spec):
+    """The correlation of noise's power in two frames of ``spec`` one hop apart, ``rho^2``: ``rho`` the Hann window's
+    normalised autocorrelation at the hop's share s of the frame, ``((1 - s)(2 + cos 2 pi s) + 3 sin(2 pi s) / 2 pi)
+    / 3`` (0.659 at a quarter)."""
+    s = min(spec.hop_s / spec.window_s, 1.0)
+    rho = ((1 - s) * (2 + np.cos(2 * np.pi * s)) + 3 * np.sin(2 * np.pi * s) / (2 * np.pi)) / 3
+    return float(rho ** 2)
 
 
 def _stroke_signed(found, frames, wider_percentiles):
