@@ -59,9 +59,10 @@ def test_a_plateau_on_the_flank_of_a_higher_peak_is_no_period():
     assert found.peak_lag == 18 and found.period_s == pytest.approx(18.0, rel=0.01)
 
 
-def test_a_peak_next_to_a_higher_one_stands_where_it_dips_towards_it():
-    """Within 3 lags (the shortest period) of a higher peak: the peak at 4 dips 0.6 towards the one at 6, its
-    prominence 1.0, and stands; the plateau at 10-11 rises to 12 without a dip, and is its flank."""
+def test_a_peak_before_a_higher_one_stands_where_it_dips_towards_it():
+    """Within 3 lags (the shortest period) before a higher peak: the peak at 4 dips 0.6 towards the one at 6, its
+    prominence 1.0, and stands; the plateau at 10-11 rises to 12 without a dip, and is its flank. The peak at 6, higher
+    than the one at 4 before it, is not compared with it (an autocorrelation decays)."""
     r = np.array([1.0, 0.2, -0.4, 0.1, 0.6, 0.0, 0.9, 0.1, -0.5, 0.0, 0.5, 0.5, 0.8, 0.2, -0.3])
     peaks = local_maxima(r)
     assert list(peaks) == [4, 6, 10, 12]

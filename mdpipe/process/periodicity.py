@@ -14,11 +14,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mdpipe.process.filters import local_maxima, parabolic_offset, running_max, running_min
+from mdpipe.process.filters import local_maxima, parabolic_offset, running_min
 
 FUNDAMENTAL_SHARE = 0.8
 REPEAT_SHARE = 0.5
-FLANK_SHARE = 0.5  # a peak next to a higher one dips this share of its prominence towards it, or is its flank
+FLANK_SHARE = 0.5  # a peak before a higher one dips this share of its prominence towards it, or is its flank
 PEAK_SPREAD = 0.03  # a repeat's peak lies within this share of k T: rotors 1-4 % apart split it about k T
 MAX_REPEATS = 64
 
@@ -112,23 +112,29 @@ def lag_range(n, *, sample_rate_hz, min_period_s, max_period_s, max_lag=None):
 
 
 def _standing(r, peaks, prominence, reach):
-    """The ``peaks`` of ``r`` that stand apart: those with a higher local maximum within ``reach`` lags (the shortest
-    period searched) stand only where ``r`` dips between the two by ``FLANK_SHARE`` of their ``prominence`` or more.
-    A peak with no such dip lies on the higher one's flank, the two unresolved, and its prominence over the running
-    minimum is the flank's (a gull's wing rows, repeating at 18 frames, rose through a plateau at 14 that stood 0.26
-    over the dip before it and 0.004 over the sample after: read 4.18 Hz for 3.47). Peaks of one period under the
-    reach dip to their troughs between them and stand."""
-    maxima = np.full(len(r), -np.inf)
-    every = local_maxima(r)
-    maxima[every] = r[every]
-    crowded = running_max(maxima, 2 * reach + 1)[peaks] > r[peaks]
-    keep = np.ones(len(peaks), dtype=bool)
-    for i in np.flatnonzero(crowded):
-        p = peaks[i]
-        near = every[(np.abs(every - p) <= reach) & (r[every] > r[p])]
-        dips = [r[p] - r[min(p, q):max(p, q) + 1].min() for q in near]
-        keep[i] = min(dips) >= FLANK_SHARE * prominence[p]
-    return peaks[keep]
+    """The ``peaks`` of ``r`` that stand apart from a later, higher one: a peak lower than a local maximum within
+    ``reach`` lags after it (the shortest period searched) stands only where ``r`` dips between the two by
+    ``FLANK_SHARE`` of its ``prominence`` or more. Without such a dip it lies on the rising flank of the later
+    peak, the two unresolved, and its prominence over the running minimum is the flank's (a gull's wing rows,
+    repeating at 18 frames, rose through a plateau at 14 that stood 0.26 over the dip before it and 0.004 over the
+    sample after: read 4.18 Hz for 3.47). Only later peaks count: an autocorrelation decays with the lag, and a peak
+    lower than an earlier one may be its own, further down the decay."""
+    if len(peaks) == 0:
+        return peaks
+    end = min(len(r), int(peaks.max()) + reach + 2)
+    is_maximum = np.zeros(end, dtype=bool)
+    is_maximum[local_maxima(r[:end])] = True
+    height = r[peaks]
+    low = height.copy()  # the least of r from each peak to the lag reached
+    dip = np.full(len(peaks), np.nan)  # where a higher maximum is reached: how far r fell on the way
+    for step in range(1, reach + 1):  # a few lags each: the peaks are many, the reach short
+        lag = peaks + step
+        going = (lag < end) & np.isnan(dip)
+        lag = np.where(going, lag, 0)
+        low = np.where(going, np.minimum(low, r[lag]), low)
+        reached = going & is_maximum[lag] & (r[lag] > height)
+        dip[reached] = height[reached] - low[reached]
+    return peaks[np.isnan(dip) | (dip >= FLANK_SHARE * prominence[peaks])]
 
 
 def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s, repeat_share=0.5,
@@ -137,11 +143,10 @@ def period_from_autocorrelation(r, *, sample_rate_hz, min_period_s, max_period_s
 
     Lags up to half the record are searched (two repeats at least), or below ``max_lag`` where given. Strength is
     the peak's height above the running minimum over one shortest candidate period (a baseline that the decay of a
-    broadband echo does not raise); a peak on the flank of a higher one is none (:func:`_standing`). Repeats at k T
-    are looked for, and the period refined on them, at lags below ``repeat_share`` of the record (an unbiased
-    autocorrelation at lag L rests on
-    ``n - L`` products); a peak at 2T (and up to ``max_order`` T) must stand with ``recur_share`` of T's
-    prominence.
+    broadband echo does not raise); a peak on the rising flank of a later one is none (:func:`_standing`). Repeats at
+    k T are looked for, and the period refined on them, at lags below ``repeat_share`` of the record (an unbiased
+    autocorrelation at lag L rests on ``n - L`` products); a peak at 2T (and up to ``max_order`` T) must stand with
+    ``recur_share`` of T's prominence.
     With ``repeat_share`` above 1/2 a period whose double lies beyond it (two or fewer periods in the
     record) is kept with ``repeats = 1``: the caller decides on its strength.
     """
