@@ -291,8 +291,6 @@ def wingbeat(demodulated, *, prf_hz, noise_power, band_hz=None, still=False):
     found = _two_looks(demodulated, frames, prf_hz=prf_hz, noise_power=noise_power, still=still)
     if isinstance(found, Period):
         found = _signed_double(found, frames)
-    if isinstance(found, BodyRowsPeriod):  # the body rows' noise, read alone
-        return None
     return _short_bursts(found, frames) if isinstance(found, Period) else found
 
 
@@ -596,71 +594,33 @@ def _looks(frames):
     In the weak look a row set is read only with ``MIN_WING_ROWS`` wing rows in it: the body's row alone, a
     line 0.4 bin off 0 Hz with weak wings 3 Hz in it, repeated at 1.23 Hz (its beat with the wings' lines);
     rows of single bins keep theirs (a goose of the evaluation sweep reads its wingbeat in the rows lit in half
-    its frames, which hold under three wing rows); a period read on the body line's rows alone, no wing row among them,
-    that no wider row set confirms is marked where it stands out of their noise less than a period read in bursts
-    must (:func:`_body_rows_marked`).
-    (:func:`wingbeat` reads none unless ``MIN_WING_ROWS`` rows off the body line are lit in a quarter of the frames: a
-    modulation of the body line alone (its main lobe's three rows) is no wing, and the line's beat with another (a
-    residual line at 0 Hz, a second body) repeats it as evenly.)
+    its frames, which hold under three wing rows). (:func:`wingbeat` reads none unless ``MIN_WING_ROWS`` rows off the body line are lit in a quarter of the
+    frames: a modulation of the body line alone (its main lobe's three rows) is no wing, and the line's beat with
+    another (a residual line at 0 Hz, a second body) repeats it as evenly.)
     """
     single = None
     for index, row_percentile in enumerate(SIGNAL_ROW_PERCENTILES):
-        wing_rows = len(frames.lit_rows(row_percentile, wings_only=True))
-        if frames.weak and wing_rows < MIN_WING_ROWS:
+        if frames.weak and len(frames.lit_rows(row_percentile, wings_only=True)) < MIN_WING_ROWS:
             continue  # the body's row with weak wings' beat in it (see above)
         found = _row_set_period(frames, row_percentile)
         if found is None:
             continue
         if found.repeats >= 2 and found.strength >= MIN_PERIODICITY:
-            if wing_rows < MIN_WING_ROWS:
-                signed = _stroke_signed(found, frames, SIGNAL_ROW_PERCENTILES[index + 1:])
-                found = _body_rows_marked(found, frames, row_percentile) if signed is found else signed
+            if len(frames.lit_rows(row_percentile, wings_only=True)) < MIN_WING_ROWS:
+                found = _stroke_signed(found, frames, SIGNAL_ROW_PERCENTILES[index + 1:])
             return _within_cycle(found, frames)
         if found.repeats == 1 and found.strength >= MIN_SINGLE_PERIODICITY and single is None:
-            single = found if wing_rows else _body_rows_marked(found, frames, row_percentile)
+            single = found
     if single is not None:
         return _within_cycle(single, frames)
     return _gated_period(frames)
 
 
-def _row_set_autocorrelation(frames, row_percentile):
-    """The pattern autocorrelation of the rows of ``frames`` lit in ``100 - row_percentile`` % of them."""
-    return pattern_autocorrelation(frames.spec, detrend_frames=int(2 * frames.frame_rate / MIN_WINGBEAT_HZ),
-                                   noise_level=frames.noise_level, row_percentile=row_percentile, lit_db=frames.lit_db)
-
-
 def _row_set_period(frames, row_percentile):
     """The wingbeat period (:func:`_period`) in the rows of ``frames`` lit in ``100 - row_percentile`` % of them."""
-    return _period(_row_set_autocorrelation(frames, row_percentile), frame_rate=frames.frame_rate,
-                   frames_per_window=_frames_per_window(frames.spec))
-
-
-@dataclass(frozen=True)
-class BodyRowsPeriod(Period):
-    """A period read on the body line's rows alone (no wing row among them), confirmed by no wider row set, that
-    stands under ``PAIR_SIGMAS`` of Bartlett's standard errors: :func:`wingbeat` gives none unless the stroke sides
-    read it as an octave (:func:`_signed_double`)."""
-
-
-def _body_rows_marked(found, frames, row_percentile):
-    """``found``, a period read on the rows of ``frames`` lit in ``100 - row_percentile`` % of them, or, where those
-    hold no wing row (the body line's main lobe alone) and ``found`` stands under ``PAIR_SIGMAS`` of Bartlett's standard
-    errors of its lag's coefficient (over the lags of frames that share chirps, as a period read within bursts must:
-    :func:`_gated_period`), the same period as a :class:`BodyRowsPeriod`.
-
-    The wings crossing the body's Doppler modulate those rows, but so does the noise on rows lit near their
-    threshold, and with no wing row to tell the two apart the period must stand out of that noise, or the stroke
-    sides confirm it: a heron seen over 1.3 beats, its body rows flickering (0.04 a hop on), read 10.6 Hz `ok` for
-    2.06 at 1.8 standard errors; a gull's body rows, 1.2 standard errors, repeat at half its beat, its stroke sides
-    at the beat (given as `ambiguous_period`).
-    """
-    if len(frames.lit_rows(row_percentile, wings_only=True)):
-        return found
-    r = _row_set_autocorrelation(frames, row_percentile)
-    overlap = r[1:min(len(r), _frames_per_window(frames.spec))]  # frames sharing chirps correlate
-    if found.strength >= PAIR_SIGMAS * bartlett_error(overlap, len(r) - found.peak_lag):
-        return found
-    return BodyRowsPeriod(**vars(found))
+    r = pattern_autocorrelation(frames.spec, detrend_frames=int(2 * frames.frame_rate / MIN_WINGBEAT_HZ),
+                                noise_level=frames.noise_level, row_percentile=row_percentile, lit_db=frames.lit_db)
+    return _period(r, frame_rate=frames.frame_rate, frames_per_window=_frames_per_window(frames.spec))
 
 
 def _stroke_signed(found, frames, wider_percentiles):
