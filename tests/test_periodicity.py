@@ -49,8 +49,8 @@ def test_lags_searched_past_half_the_record_only_where_asked():
 def test_a_plateau_on_the_flank_of_a_higher_peak_is_no_period():
     """A period of 18 lags whose rising flank holds a plateau at 14-15 (a gull's wing rows: 0.44, 0.44, then up to
     0.72 at 18). Searched to lag 16 the plateau is the only local maximum, and its prominence over the running minimum
-    is the flank's: it read a period of 14.x (4.18 Hz for 3.47). A higher maximum lies within a shortest period after it:
-    no period; with the lags run to 20, the peak at 18."""
+    is the flank's: it read a period of 14.x (4.18 Hz for 3.47). A higher maximum lies within a shortest period after
+    it: no period; with the lags run to 20, the peak at 18."""
     r = cosine_autocorrelation(18.0, n=35)
     r[15] = r[14]
     kwargs = dict(sample_rate_hz=1.0, min_period_s=4.0, max_period_s=30.0, repeat_share=0.8)
