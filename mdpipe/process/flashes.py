@@ -406,6 +406,8 @@ def flank_line_hz(flanks, *, prf_hz, min_hz, max_hz, common=None, own=None, leak
     searched = (f_hz >= min_hz) & (f_hz <= min(max_hz, prf_hz / 2 * (1 - NYQUIST_GUARD)))
     shared = np.minimum.reduce([running_max(np.where(searched, contrast, 0.0), 3) for contrast in contrasts])
     lines = np.flatnonzero(searched & (shared >= 10 ** (FLANK_LINE_DB / 10)))
+    if len(lines) == 0:  # most flanks: the vetoes' spectra (the common mode's median over half the chirps) not wanted
+        return None
     common_lit = None if common is None else _lit(common, prf_hz=prf_hz)
     own_spectrum = None if own is None or leak_db is None else _envelope_spectrum(own)
     resolution_hz = prf_hz / powers.shape[1]
