@@ -405,17 +405,18 @@ def test_a_chopping_kept_but_not_stood_behind_is_left_as_it_was():
     assert read is turn
 
 
-def _sides(flash_period, *, alternate, both=False, n_chirps=8000, amplitude=4.0, upper=1.0, seed=5):
+def _sides(flash_period, *, alternate, both=False, n_chirps=8000, amplitude=4.0, upper=1.0, seed=5, offset=0.0):
     """Two range sides' slow time: unit complex noise each, and flashes (one chirp, random phase) every
     ``flash_period`` chirps, by turns on the lower and the upper side (``alternate``: an odd N's approaching and
-    receding blades) or on both at once; ``both``: each flash seen on both sides (a beat that hardly moves);
-    ``upper``: the upper side's share of the flashes' amplitude (a target off its range bin's centre)."""
+    receding blades) or on both at once, the upper side's ``offset`` chirps later; ``both``: each flash seen on both
+    sides (a beat that hardly moves); ``upper``: the upper side's share of the flashes' amplitude (a target off its
+    range bin's centre)."""
     rng = np.random.default_rng(seed)
     x = (rng.standard_normal((n_chirps, 2)) + 1j * rng.standard_normal((n_chirps, 2))) / np.sqrt(2)
-    for j, t in enumerate(np.arange(10.0, n_chirps - 1, flash_period)):
+    for j, t in enumerate(np.arange(10.0, n_chirps - 1 - offset, flash_period)):
         on = (0, 1) if both or not alternate else (j % 2,)
         for side in on:
-            x[int(t), side] += amplitude * (upper if side else 1.0) * np.exp(2j * np.pi * rng.uniform())
+            x[int(t + side * offset), side] += amplitude * (upper if side else 1.0) * np.exp(2j * np.pi * rng.uniform())
     return x
 
 
@@ -427,6 +428,20 @@ def test_flashes_alternating_range_sides_tell_an_odd_blade_count():
     assert not flashes.sides_alternate(_sides(40.0, alternate=False), 40.0)
     assert not flashes.sides_alternate(_sides(40.0, alternate=True, both=True), 40.0)
     assert not flashes.sides_alternate(_sides(40.0, alternate=True, amplitude=0.0), 40.0)
+
+
+def test_flash_times_each_range_side_flashes_at_on_its_own_are_told():
+    """Each side flashing every 40 chirps, the upper side 20 chirps after the lower (an odd N's flashes by turns,
+    every 20 chirps, read at its chopping period) or 13 after: each side repeats at every flash time, the sides
+    neither at once nor 40 chirps apart: told. Flashes on both sides at once (an even N's) or each seen on both
+    sides (the sides correlate at once and one flash apart), flashes by turns every 40 chirps (each side every
+    second flash), or noise: not."""
+    assert flashes.sides_flash_apart(_sides(40.0, alternate=False, offset=20.0), 40.0)
+    assert flashes.sides_flash_apart(_sides(40.0, alternate=False, offset=13.0), 40.0)
+    assert not flashes.sides_flash_apart(_sides(40.0, alternate=False), 40.0)
+    assert not flashes.sides_flash_apart(_sides(40.0, alternate=True, both=True), 40.0)
+    assert not flashes.sides_flash_apart(_sides(40.0, alternate=True), 40.0)
+    assert not flashes.sides_flash_apart(_sides(40.0, alternate=True, amplitude=0.0), 40.0)
 
 
 def test_flashes_alternating_range_sides_unevenly_are_read_on_both_sides_pooled():

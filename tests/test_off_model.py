@@ -307,6 +307,52 @@ def test_a_blade_differing_is_told_from_an_odd_count_by_every_second_line(tmp_pa
         assert row["rotation_rate_hz"] == pytest.approx(np.mean(np.abs(rates)), rel=0.005)
 
 
+W_BAND_LOW_PRF = dict(f_start_hz=94.0e9, f_stop_hz=94.25e9, ramp_up_s=239.596e-6, chirp_period_s=299.494e-6,
+                      sample_rate_hz=534232.6254528457, n_samples=128, n_chirps=2535, n_channels=4)
+X_BAND_LOW_PRF = dict(f_start_hz=9.8e9, f_stop_hz=9.9e9, ramp_up_s=134.955e-6, chirp_period_s=168.693e-6,
+                      sample_rate_hz=474232.15193212556, n_samples=64, n_chirps=3960, n_channels=1)
+
+
+def test_an_odd_count_given_does_not_halve_flash_times_each_range_side_flashes_at(tmp_path):
+    """Four 3-blade rotors at 59.2-62.8 rev/s (chopping 183.8 Hz), one blade of each 1.9 times the others, seen
+    0.76 s at 94 GHz and a PRF of 3339 Hz, their tips folded 15 times (a scene of a low-PRF sweep, its clutter left
+    out). Equal blades of an odd count flash twice per chopping period, by turns on the target's range sides; these
+    flash times, 182 Hz, are the chopping itself, and each side flashes at every one on its own. Halved for the 3
+    blades given they read 91 Hz, `ok` (old code): withheld as `ambiguous_period`, both readings named."""
+    rates = [60.3563, -59.215, 62.6483, -62.8431]
+    quad = {"name": "quad", "type": "multirotor", "elevation_deg": 13.2717, "body_rcs_m2": 0.0511526,
+            "motion": {"position_m": [3.44437, 1.23012, 11.1275]},
+            "rotors": {"count": 4, "blade_profile": "tapered", "tip_reflectivity": 0.507787, "root_m": 0.01,
+                       "phase_deg": [232.174, 183.069, 294.47, 214.537], "blade_rcs_m2": 0.00278178,
+                       "tilt_deg": [3.20492, -1.74547, -0.844885, 1.82924], "blades": 3, "arm_m": 0.255865,
+                       "blade_length_m": 0.104133, "rev_per_s": rates, "blade_gains": [1.0, 1.0, 1.90073]}}
+    row = sweep_row(tmp_path, W_BAND_LOW_PRF, quad, moving_snr_db=2.20875, seed=1256079351, n_blades=3)
+    assert row["class"] == "drone" and row["aliased"]
+    assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"
+    assert row["rotation_rate_hz"] is None
+    assert "each of the target's range sides flashing at every one on its own" in row["notes"]
+    assert "the chopping is 182" in row["notes"]  # the flash times themselves, the chopping (3 x 61.3 rev/s = 183.8 Hz)
+
+
+def test_an_odd_count_given_halves_flash_times_whose_sides_alternate(tmp_path):
+    """Four equal 3-blade rotors at 70.5-71.5 rev/s (chopping 213.5 Hz) seen 0.67 s at X band and a PRF of 5928 Hz,
+    their tips folded (a scene of a low-PRF sweep, its clutter left out). The flash times, 426 Hz, alternate the
+    target's range sides, as an odd count's equal blades flash: halved for the 3 blades given, the chopping."""
+    rates = [71.2745, -70.5399, 71.2797, -71.5468]
+    quad = {"name": "quad", "type": "multirotor", "elevation_deg": 5.4727, "body_rcs_m2": 0.104239,
+            "motion": {"position_m": [31.8697, -6.75753, 4.10168], "velocity_mps": [-8.71806, 4.22913, 0.0]},
+            "rotors": {"count": 4, "blade_profile": "uniform", "root_m": 0.01,
+                       "phase_deg": [115.389, 253.943, 105.645, 171.931], "blade_rcs_m2": 0.00373169,
+                       "rate_wander_fraction": 0.00127097, "rate_wander_period_s": 2.50081,
+                       "tilt_deg": [0.453044, -4.14933, -3.98097, -1.55701], "blades": 3, "arm_m": 0.303974,
+                       "blade_length_m": 0.178882, "rev_per_s": rates}}
+    row = sweep_row(tmp_path, X_BAND_LOW_PRF, quad, moving_snr_db=11.682, seed=1455522482, n_blades=3,
+                    elevation_deg=5.4727)
+    assert row["class"] == "drone" and row["aliased"]
+    assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ok"
+    assert row["chopping_freq_hz"] == pytest.approx(3 * np.mean(np.abs(rates)), rel=0.01)
+
+
 def test_flashes_too_weak_one_by_one_still_tell_a_drone(tmp_path):
     """Four tapered 2-blade rotors at 119-125 rev/s, aliased at 76.5 GHz and 2.4 dB per IF sample (a scene of the
     default sweep, its clutter left out): the band too weak to be seen filling the span, no flash clear of the
@@ -2328,13 +2374,15 @@ def test_a_comb_at_half_the_chopping_seen_from_above_is_kept_ambiguous_by_the_fl
     assert "chopping frequency 112.2 Hz or twice it" in row["notes"]
 
 
-def test_an_odd_counts_flash_times_at_the_chopping_are_kept_ambiguous_by_the_flashes_the_ramp_resolves(tmp_path):
+def test_an_odd_counts_flash_times_at_the_chopping_are_not_halved(tmp_path):
     """Scene 59 of the low-PRF sweep drawn at seed 557: a K-band quadrotor of 3-blade rotors at 72.0-73.9 rev/s
     (choppings 215.9-221.7 Hz; 3 blades flash twice per chopping period, every 9.0-9.3 chirps at a PRF of 4.01 kHz),
     seen edge-on. Its flash times read every 18.2 chirps (every second passage caught), taken for the flashes of the
-    3 blades given: a chopping of 110 Hz, `ok`. Resolved within the ramp the flashes repeat whole every 9.1 chirps,
-    four times per period of that chopping: 220 Hz, or two rotors at one rate a quarter of its period apart (one
-    rate read): the reading kept as ambiguous, no rate."""
+    3 blades given: a chopping of 110 Hz, `ok` (first code). Resolved within the ramp the flashes repeat whole every
+    9.1 chirps, four times per period of that chopping: 220 Hz, or two rotors at one rate a quarter of its period
+    apart (one rate read), and the reading was kept as ambiguous, 110 Hz its value (later code). Each range side
+    flashes at every flash time, the sides not at the same flashes: the flash times are each side's, as an odd
+    count's flashes by turns show at its chopping, so 220 Hz is named first and neither is reported."""
     radar = dict(f_start_hz=24.0e9, f_stop_hz=24.25e9, ramp_up_s=0.000199695, chirp_period_s=0.000249619,
                  sample_rate_hz=640977.4913142542, n_samples=128, n_chirps=3479, n_channels=1)
     quad = {"name": "three_blade_quad", "type": "multirotor", "elevation_deg": 0.879069, "body_rcs_m2": 0.0144857,
@@ -2350,9 +2398,9 @@ def test_an_odd_counts_flash_times_at_the_chopping_are_kept_ambiguous_by_the_fla
                     elevation_deg=0.879069)
     assert row["class"] == "drone" and row["aliased"]
     assert row["chopping_freq_hz_status"] == row["rotation_rate_hz_status"] == "ambiguous_period"
-    assert row["chopping_freq_hz"] == pytest.approx(110.0, rel=0.01) and row["rotation_rate_hz"] is None
-    assert "4 times per period of the chopping read" in row["notes"]
-    assert "chopping frequency 110 Hz or twice it" in row["notes"]
+    assert row["chopping_freq_hz"] is None and row["rotation_rate_hz"] is None
+    assert "each of the target's range sides flashing at every one on its own" in row["notes"]
+    assert "the chopping is 220 Hz, or 110 Hz where these are every flash" in row["notes"]
 
 
 def test_a_right_comb_stands_where_the_ramps_parts_sit_on_a_floor(tmp_path):

@@ -21,7 +21,8 @@ from mdpipe.process.filters import least_squares_line, moving_average, running_m
 from mdpipe.process.flashes import (MAX_POWER_PERIOD_S, RAMP_MIN_PERIOD_CHIRPS, RAMP_SETTLE_SHARE, PowerPeriod,
                                     chirp_grid_drift, flank_flash_period, flank_line_hz, flash_period, on_chirp_grid,
                                     period_of_power, power_period, ramp_readable, ramp_floor, ramp_repeat,
-                                    ramp_repeats_whole, ramp_train, sides_alternate, whole_ratio_apart)
+                                    ramp_repeats_whole, ramp_train, sides_alternate, sides_flash_apart,
+                                    whole_ratio_apart)
 from mdpipe.process.periodicity import autocorrelation, best_near, find_period
 from mdpipe.process.ranging import MAIN_LOBE_BINS
 from mdpipe.process.validity import OK, Measured, withheld
@@ -1078,6 +1079,9 @@ def rotation(demodulated, *, aliased, half_width_hz, prf_hz, noise_power, n_blad
         held = _span_ambiguity("flash times", timed_hz, prf_hz=prf_hz, dwell_s=dwell_s, power=power)
         if held:
             return held, None, False
+        if n_blades is not None and n_blades % 2 and sides is not None and sides_flash_apart(sides(),
+                                                                                           prf_hz / timed_hz):
+            return _flash_times_of_each_side(timed_hz, n_blades=n_blades), None, False
         odd_shown = n_blades is None and alternate(1.0 / timed_hz)
         return None, _chopping_from_flash_rate(timed_hz, n_blades=n_blades, alternating=odd_shown), odd_shown
 
@@ -1471,6 +1475,25 @@ def _whole_multiple(found, frequency_hz):
     ratio = 1.0 / found.period_s / frequency_hz
     k = round(ratio)
     return k if k >= 1 and _agrees(ratio, k) else 0
+
+
+def _flash_times_of_each_side(timed_hz, *, n_blades):
+    """Rotation withheld as ``ambiguous_period``: aliased flash times at ``timed_hz`` alone, an odd blade count
+    ``n_blades`` given, and each of the target's range sides flashing at every flash time on its own
+    (:func:`~mdpipe.process.flashes.sides_flash_apart`).
+
+    An odd N's equal blades flash 2N times a turn, by turns on the range sides (an approaching blade's beat moved to
+    one, a receding one's half a chopping period later to the other): flash times at twice the chopping, halved
+    for it. Each side flashing at every flash time is what those flashes show at the chopping itself, each side
+    once in its period: two low-PRF 3-blade quadrotors, their tips folded 9 and 15 times, flashed so at 309 and
+    182 Hz, their chopping 313 and 184 Hz, and were read at half it, `ok`. Flash times are the dwell's strongest
+    repeat, which stroboscopic sampling can put at a side's (the sides did not alternate at half their period
+    either): which one the dwell holds is not told.
+    """
+    note = (f"rotation not estimable: flash times at {timed_hz:.4g} Hz, each of the target's range sides flashing "
+            f"at every one on its own, as an odd count's flashes by turns do at its chopping ({n_blades} blades "
+            f"given): the chopping is {timed_hz:.4g} Hz, or {timed_hz / 2:.4g} Hz where these are every flash")
+    return Rotation.withheld("ambiguous_period", note)
 
 
 def _flashes_missed(found, timed_hz, *, n_blades):
