@@ -1485,7 +1485,7 @@ def _flash_times_of_each_side(timed_hz, *, n_blades):
     An odd N's equal blades flash 2N times a turn, by turns on the range sides (an approaching blade's beat moved to
     one, a receding one's half a chopping period later to the other): flash times at twice the chopping, halved
     for it. Each side flashing at every flash time is what those flashes show at the chopping itself, each side
-    once in its period: two low-PRF 3-blade quadrotors, their tips folded 9 and 15 times, flashed so at 309 and
+    once in its period: two low-PRF 3-blade quadrotors, their tips folded 6 and 15 times, flashed so at 309 and
     182 Hz, their chopping 313 and 184 Hz, and were read at half it, `ok`. Flash times are the dwell's strongest
     repeat, which stroboscopic sampling can put at a side's (the sides did not alternate at half their period
     either): which one the dwell holds is not told.
