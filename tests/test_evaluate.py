@@ -285,6 +285,44 @@ def test_evaluate_command_writes_its_files(tmp_path):
     assert "## Rotation rate by band and blade profile" in text
 
 
+def test_kept_captures_are_processed_again_instead_of_simulated(tmp_path, monkeypatch):
+    """A run with --keep-captures, then one with --reuse-captures on its folder: every scored column the same, no
+    scene simulated. A capture of another scene (its /Truth YAML differs) is simulated anew; a folder another
+    simulator kept, or the run's own, is refused with the fix."""
+    from mdpipe.evaluate import captures
+
+    first, second = tmp_path / "first", tmp_path / "second"
+    args = ["evaluate", str(SWEEPS / "smoke.yaml"), "-j", "1", "--limit", "3"]
+    result = CliRunner().invoke(main, [*args, "--out", str(first), "--keep-captures"])
+    assert result.exit_code == 0, result.output
+    kept = first / "captures"
+    assert len(list(kept.glob("*.h5"))) == 3 and (kept / captures.SIMULATOR_FILE).exists()
+    result = CliRunner().invoke(main, [*args, "--out", str(second), "--reuse-captures", str(kept)])
+    assert result.exit_code == 0, result.output
+    before, after = pd.read_csv(first / "scenes.csv"), pd.read_csv(second / "scenes.csv")
+    timing = ["simulate_s", "process_s"]
+    pd.testing.assert_frame_equal(before.drop(columns=timing), after.drop(columns=timing))
+    assert (after["simulate_s"] == 0).all() and not (second / "captures").exists()
+
+    draws = sweep.draw_scenes(sweep.load_sweep(SWEEPS / "smoke.yaml"), limit=2)
+    (kept / f"{draws[0].name}.h5").rename(kept / f"{draws[1].name}.h5")  # scene 1's name, scene 0's capture
+    (tmp_path / "third" / "scenes").mkdir(parents=True)
+    (tmp_path / "third" / "captures").mkdir()
+    simulated = []
+    monkeypatch.setattr("mdpipe.simulate.run.simulate_to_file",
+                        lambda *a, **k: simulated.append(a[1].name) or pytest.fail("simulated"))
+    with pytest.raises(pytest.fail.Exception):
+        run.run_scene(draws[1], tmp_path / "third", reuse_dir=kept)
+    assert simulated == [f"{draws[1].name}.h5"]
+
+    (kept / captures.SIMULATOR_FILE).write_text("0" * 64 + "\n")
+    result = CliRunner().invoke(main, [*args, "--out", str(second), "--reuse-captures", str(kept)])
+    assert result.exit_code == 2 and "Traceback" not in result.output
+    assert "was simulated by other simulator code" in result.output and "--keep-captures" in result.output
+    result = CliRunner().invoke(main, [*args, "--out", str(first), "--reuse-captures", str(kept)])
+    assert result.exit_code == 2 and "is this run's own captures folder" in result.output
+
+
 def test_a_capture_the_processing_fails_on_is_recorded_as_a_wrong_class(tmp_path, monkeypatch):
     import mdpipe.process.pipeline
 

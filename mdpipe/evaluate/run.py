@@ -1,6 +1,7 @@
 """Simulate, process and score every drawn scene, on ``jobs`` processes."""
 
 import os
+import shutil
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
@@ -8,7 +9,7 @@ from pathlib import Path
 import yaml
 from threadpoolctl import threadpool_limits
 
-from mdpipe.evaluate import scoring
+from mdpipe.evaluate import captures, scoring
 from mdpipe.params import ProcessParams
 
 SCENES_DIR = "scenes"
@@ -70,9 +71,13 @@ def score_scene(draw, scene, truth, rows, *, process):
     return records
 
 
-def run_scene(draw, out_dir, keep_captures=False):
+def run_scene(draw, out_dir, keep_captures=False, reuse_dir=None):
     """Simulate, process and score one drawn scene (:func:`mdpipe.evaluate.sweep.draw_scene` has had the
     simulator accept it); a list of record dicts (see :func:`score_scene`).
+
+    With ``reuse_dir`` (a folder :func:`mdpipe.evaluate.captures.check_reusable` accepted) the scene's capture kept
+    there is processed instead, where it was simulated from this very scene (:func:`captures.kept_truth`); its
+    ``simulate_s`` is 0.
 
     A capture the processing fails on (any exception: the benchmark measures the processing, it does
     not stop at its first failure) is recorded with the error and counts as a wrong class.
@@ -91,16 +96,22 @@ def run_scene(draw, out_dir, keep_captures=False):
               "n_chirps": scene.radar.n_chirps, "dwell_s": scene.radar.params.duration_s(scene.radar.n_chirps),
               "n_blades_given": draw.process.get("n_blades"), "n_blades_source": blades_source,
               "elevation_given": "elevation_deg" in draw.process}
+    scene_yaml = scene_to_yaml(draw.scene)
+    kept = reuse_dir and captures.kept_truth(Path(reuse_dir) / capture.name, scene_yaml)
+    if kept:
+        capture = Path(reuse_dir) / capture.name  # read in place, never removed
     with threadpool_limits(limits=1):
         start = time.perf_counter()
-        truth = simulate_to_file(scene, capture, scene_yaml=scene_to_yaml(draw.scene))
-        simulated = time.perf_counter()
+        truth = kept or simulate_to_file(scene, capture, scene_yaml=scene_yaml)
+        simulated = start if kept else time.perf_counter()
         try:
             rows, error = process_capture(capture, params).rows, ""
         except Exception as exc:  # noqa: BLE001 - the benchmark records a failing capture and goes on
             rows, error = [], f"{type(exc).__name__}: {exc}"
         processed = time.perf_counter()
-    if not keep_captures:
+    if kept and keep_captures:
+        shutil.copyfile(capture, out_dir / CAPTURES_DIR / capture.name)
+    elif not kept and not keep_captures:
         os.remove(capture)
     timing = {"simulate_s": simulated - start, "process_s": processed - simulated, "error": error}
     records = [{**common, **record, **timing} for record in score_scene(draw, scene, truth, rows, process=draw.process)]
@@ -109,25 +120,32 @@ def run_scene(draw, out_dir, keep_captures=False):
     return records
 
 
-def run_all(draws, out_dir, *, jobs=1, keep_captures=False):
+def run_all(draws, out_dir, *, jobs=1, keep_captures=False, reuse_dir=None):
     """Records of every drawn scene, in scene order; ``jobs`` worker processes.
 
     ``out_dir/scenes/`` and ``out_dir/captures/`` are emptied of scene and capture files first, so that they hold
-    exactly this run's.
+    exactly this run's; kept captures are marked with the simulator's digest (:mod:`mdpipe.evaluate.captures`).
+    ``reuse_dir``: another run's kept captures, processed again where they are this sweep's scenes (checked first:
+    :func:`captures.check_reusable`).
     """
     out_dir = Path(out_dir)
+    if reuse_dir is not None:
+        captures.check_reusable(reuse_dir, out_dir / CAPTURES_DIR)
     for sub in (SCENES_DIR, CAPTURES_DIR):
         (out_dir / sub).mkdir(parents=True, exist_ok=True)
     stale = list((out_dir / SCENES_DIR).glob("*.yaml")) + list((out_dir / CAPTURES_DIR).glob("*.h5"))
     for path in stale:  # scenes.csv will describe this run's scenes only
         path.unlink()
-    args = [(draw, out_dir, keep_captures) for draw in draws]
+    (out_dir / CAPTURES_DIR / captures.SIMULATOR_FILE).unlink(missing_ok=True)
+    args = [(draw, out_dir, keep_captures, reuse_dir) for draw in draws]
     if jobs == 1:
         results = [run_scene(*a) for a in args]
     else:
         with ProcessPoolExecutor(max_workers=jobs) as pool:
             results = list(pool.map(run_scene, *zip(*args)))
-    if not keep_captures:
+    if keep_captures:
+        captures.mark_simulator(out_dir / CAPTURES_DIR)
+    else:
         try:
             (out_dir / CAPTURES_DIR).rmdir()
         except OSError:
