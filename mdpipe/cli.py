@@ -693,8 +693,8 @@ def paper(out_dir, configs_dir):
 @click.option("--keep-captures", is_flag=True, help="Keep the simulated captures in OUT/captures/.")
 @click.option("--reuse-captures", "reuse_dir", type=click.Path(file_okay=False, path_type=Path),
               help="Process the captures another run kept (its OUT/captures/, made with --keep-captures by this "
-              "simulator) instead of simulating the scenes they hold: a processing change scored on the same scenes "
-              "in a fifth of the time.")
+              "simulator) instead of simulating the scenes they hold: a processing change scored on the same scenes, "
+              "only processed.")
 @click.option("--seed", type=click.IntRange(min=0), help="Draw with this seed instead of the sweep's: a fresh draw "
               "of the same distributions, scenes no estimator was tuned on.")
 def evaluate(sweep_path, out_dir, jobs, limit, keep_captures, reuse_dir, seed):
@@ -712,8 +712,8 @@ def evaluate(sweep_path, out_dir, jobs, limit, keep_captures, reuse_dir, seed):
     start = time.perf_counter()
     draws = sweep.draw_scenes(sweep.load_sweep(sweep_path), limit=limit, seed=seed)
     out_dir.mkdir(parents=True, exist_ok=True)
-    frame = summary.records_frame(run.run_all(draws, out_dir, jobs=jobs, keep_captures=keep_captures,
-                                                     reuse_dir=reuse_dir))
+    records = run.run_all(draws, out_dir, jobs=jobs, keep_captures=keep_captures, reuse_dir=reuse_dir)
+    frame = summary.records_frame(records)
     text = summary.report(frame, title=f"mdpipe evaluate {sweep_path}" + ("" if seed is None else f" --seed {seed}"),
                           wall_s=time.perf_counter() - start, jobs=jobs)
     atomic_write(out_dir / "scenes.csv", lambda tmp: frame.to_csv(tmp, index=False))

@@ -287,8 +287,8 @@ def test_evaluate_command_writes_its_files(tmp_path):
 
 def test_kept_captures_are_processed_again_instead_of_simulated(tmp_path, monkeypatch):
     """A run with --keep-captures, then one with --reuse-captures on its folder: every scored column the same, no
-    scene simulated. A capture of another scene (its /Truth YAML differs) is simulated anew; a folder another
-    simulator kept, or the run's own, is refused with the fix."""
+    scene simulated. A capture of another scene (its /Truth YAML differs), a file that does not open or none is
+    simulated anew; a folder another simulator kept, or the run's own, is refused with the fix."""
     from mdpipe.evaluate import captures
 
     first, second = tmp_path / "first", tmp_path / "second"
@@ -314,6 +314,9 @@ def test_kept_captures_are_processed_again_instead_of_simulated(tmp_path, monkey
     with pytest.raises(pytest.fail.Exception):
         run.run_scene(draws[1], tmp_path / "third", reuse_dir=kept)
     assert simulated == [f"{draws[1].name}.h5"]
+    (kept / "garbage.h5").write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(100))  # an HDF5 signature, nothing after it
+    assert captures.kept_truth(kept / "garbage.h5", "") is None
+    assert captures.kept_truth(kept / "absent.h5", "") is None
 
     (kept / captures.SIMULATOR_FILE).write_text("0" * 64 + "\n")
     result = CliRunner().invoke(main, [*args, "--out", str(second), "--reuse-captures", str(kept)])
