@@ -7,7 +7,7 @@ MDPIPE := $(BIN)/mdpipe
 SAMPLES := data_samples/fimi_1rx.h5 data_samples/phantom4_xband.h5 data_samples/gull_flyby.h5 \
            data_samples/clutter_only.h5
 
-.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-fresh evaluate-heldout evaluate-heldout-lowprf evaluate-heldout-lowprf-fresh evaluate-heldout-lowprf-birds evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades offmodel-cw offmodel-cw-hum readme clean
+.PHONY: demo install test test-slow samples bench bench-sim bench-scale bench-batch bench-impairments batch paper evaluate evaluate-reuse evaluate-fresh evaluate-heldout evaluate-heldout-lowprf evaluate-heldout-lowprf-fresh evaluate-heldout-lowprf-birds evaluate-heldout-birds evaluate-heldout-birds-fresh offmodel offmodel-blades offmodel-cw offmodel-cw-hum readme clean
 
 $(MDPIPE): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -77,6 +77,12 @@ paper: $(MDPIPE)
 evaluate: $(MDPIPE)
 	$(MDPIPE) evaluate configs/sweeps/default.yaml --out out/evaluate -j 2
 
+# The default sweep simulated with its captures kept (~1 GB under out/evaluate_kept/captures), then processed again from
+# them (--reuse-captures: no scene simulated): the two summaries' `wall` lines time a processing change's rerun
+evaluate-reuse: $(MDPIPE)
+	$(MDPIPE) evaluate configs/sweeps/default.yaml --out out/evaluate_kept -j 2 --keep-captures
+	$(MDPIPE) evaluate configs/sweeps/default.yaml --out out/evaluate_reused -j 2 --reuse-captures out/evaluate_kept/captures
+
 # The default sweep's distributions drawn with two other seeds: the same families and bands, scenes no change was
 # tuned on (the default seed's numbers flatter the estimators; about 3 minutes each on 2 cores)
 evaluate-fresh: $(MDPIPE)
@@ -119,7 +125,8 @@ evaluate-heldout-birds-fresh: $(MDPIPE)
 # kept under OFFMODEL_DIR and reused (about 17 min with -j 2 to simulate them, 2 min to process them again).
 OFFMODEL_DIR ?= $(BENCH_DIR)/mdpipe_offmodel
 offmodel: $(MDPIPE)
-	$(BIN)/python benchmarks/bench_offmodel.py --workdir $(OFFMODEL_DIR) -j 2
+	mkdir -p out
+	$(BIN)/python benchmarks/bench_offmodel.py --workdir $(OFFMODEL_DIR) -j 2 --rows out/offmodel_rows.csv
 
 # The blade count without --blades on 36 multirotor scenes of that simulator built to read it or to fool it (rotors of
 # unequal blades, odd counts, rotors at one rate phased to cancel lines): captures kept under BLADES_DIR (~3 min).

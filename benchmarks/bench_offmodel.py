@@ -124,6 +124,8 @@ def main():
     parser.add_argument("--workdir", required=True, help="where the captures are written (and reused)")
     parser.add_argument("--scenes", default=f"0-{N_SCENES - 1}", help="scene ids, e.g. 0-379 or 31,112,124")
     parser.add_argument("-j", "--jobs", type=int, default=2)
+    parser.add_argument("--rows", type=Path, help="also write each scene's row and truth here (CSV): two versions "
+                        "of mdpipe compared scene by scene")
     args = parser.parse_args()
     Path(args.workdir).mkdir(parents=True, exist_ok=True)
     ids = parse_ids(args.scenes)
@@ -131,7 +133,26 @@ def main():
         results = sorted(pool.map(run_scene, ids, [args.workdir] * len(ids)), key=lambda r: r[0])
     print(f"{len(results)} scenes of benchmarks/offmodel\n")
     report(results)
+    if args.rows:
+        write_rows(results, args.rows)
     return 0
+
+
+def write_rows(results, path):
+    """One CSV row per scene: its id, description, the truth of each feature (``truth_<feature>``), whether the simple
+    rules call it measurable, and the class, value and status read; written whole or not at all."""
+    import pandas as pd
+
+    from mdpipe.report.tables import atomic_write
+
+    rows = []
+    for sid, description, truth, row, classes in results:
+        can = measurable(truth)
+        rows.append({"scene": sid, "description": description, "kind": truth["kind"],
+                     "classes": " ".join(map(str, classes)),
+                     **{f"truth_{f}": truth.get(TRUTH_KEY[f]) for f in FEATURES},
+                     **{f"measurable_{f}": can[f] for f in FEATURES}, **row})
+    atomic_write(path, lambda tmp: pd.DataFrame(rows).to_csv(tmp, index=False))
 
 
 def report(results):
