@@ -78,10 +78,12 @@ evaluate: $(MDPIPE)
 	$(MDPIPE) evaluate configs/sweeps/default.yaml --out out/evaluate -j 2
 
 # The default sweep simulated with its captures kept (~1 GB under out/evaluate_kept/captures), then processed again from
-# them (--reuse-captures: no scene simulated): the two summaries' `wall` lines time a processing change's rerun
+# them (--reuse-captures: no scene simulated): the two summaries' `wall` lines time a processing change's rerun, and
+# the two scenes.csv must agree row by row (benchmarks/compare_scenes.py)
 evaluate-reuse: $(MDPIPE)
 	$(MDPIPE) evaluate configs/sweeps/default.yaml --out out/evaluate_kept -j 2 --keep-captures
 	$(MDPIPE) evaluate configs/sweeps/default.yaml --out out/evaluate_reused -j 2 --reuse-captures out/evaluate_kept/captures
+	$(BIN)/python benchmarks/compare_scenes.py out/evaluate_kept/scenes.csv out/evaluate_reused/scenes.csv
 
 # The default sweep's distributions drawn with two other seeds: the same families and bands, scenes no change was
 # tuned on (the default seed's numbers flatter the estimators; about 3 minutes each on 2 cores)
@@ -124,9 +126,10 @@ evaluate-heldout-birds-fresh: $(MDPIPE)
 # mdpipe on 380 scenes of an FMCW simulator written apart from its own (benchmarks/offmodel): ~4 GB of captures
 # kept under OFFMODEL_DIR and reused (about 17 min with -j 2 to simulate them, 2 min to process them again).
 OFFMODEL_DIR ?= $(BENCH_DIR)/mdpipe_offmodel
+OFFMODEL_ROWS ?= out/offmodel_rows.csv
 offmodel: $(MDPIPE)
-	mkdir -p out
-	$(BIN)/python benchmarks/bench_offmodel.py --workdir $(OFFMODEL_DIR) -j 2 --rows out/offmodel_rows.csv
+	mkdir -p $(dir $(OFFMODEL_ROWS))
+	$(BIN)/python benchmarks/bench_offmodel.py --workdir $(OFFMODEL_DIR) -j 2 --rows $(OFFMODEL_ROWS)
 
 # The blade count without --blades on 36 multirotor scenes of that simulator built to read it or to fool it (rotors of
 # unequal blades, odd counts, rotors at one rate phased to cancel lines): captures kept under BLADES_DIR (~3 min).

@@ -127,6 +127,8 @@ def main():
     parser.add_argument("--rows", type=Path, help="also write each scene's row and truth here (CSV): two versions "
                         "of mdpipe compared scene by scene")
     args = parser.parse_args()
+    if args.rows and not args.rows.parent.is_dir():
+        parser.error(f"--rows {args.rows}: its folder does not exist; make it first")
     Path(args.workdir).mkdir(parents=True, exist_ok=True)
     ids = parse_ids(args.scenes)
     with ProcessPoolExecutor(args.jobs) as pool:

@@ -9,11 +9,12 @@ from click.testing import CliRunner
 
 from conftest import XBAND, scene_mapping, simulate, slow_time
 from mdpipe.cli import main
-from mdpipe.errors import ParameterError
+from mdpipe.errors import MdpipeError, ParameterError
 from mdpipe.evaluate import run, scoring, summary, sweep
 from mdpipe.simulate.scene import scene_from_mapping
 
-SWEEPS = Path(__file__).resolve().parents[1] / "configs" / "sweeps"
+ROOT = Path(__file__).resolve().parents[1]
+SWEEPS = ROOT / "configs" / "sweeps"
 # A 4-rotor, 2-blade drone at 80 rev/s, r = 0.12 m, seen at beta = 10 deg by X band at PRF 40 kHz for 0.1 s.
 DRONE = scoring.Physics(kind="multirotor", expected_class="drone", dwell_s=0.1, prf_hz=40000.0,
                         micro_line_snr_db=30.0, body_line_snr_db=40.0, rotor_rates_hz=(80.0,) * 4, n_blades=2,
@@ -300,11 +301,12 @@ def test_kept_captures_are_processed_again_instead_of_simulated(tmp_path, monkey
     result = CliRunner().invoke(main, [*args, "--out", str(second), "--reuse-captures", str(kept)])
     assert result.exit_code == 0, result.output
     before, after = pd.read_csv(first / "scenes.csv"), pd.read_csv(second / "scenes.csv")
-    timing = ["simulate_s", "process_s"]
+    timing = ["simulate_s", "process_s", "reused"]
     pd.testing.assert_frame_equal(before.drop(columns=timing), after.drop(columns=timing))
-    assert (after["simulate_s"] == 0).all() and not (second / "captures").exists()
+    assert (after["simulate_s"] == 0).all() and after["reused"].all() and not before["reused"].any()
+    assert not (second / "captures").exists() and "3 of 3 captures reused" in result.output
 
-    draws = sweep.draw_scenes(sweep.load_sweep(SWEEPS / "smoke.yaml"), limit=2)
+    draws = sweep.draw_scenes(sweep.load_sweep(SWEEPS / "smoke.yaml"), limit=3)
     (kept / f"{draws[0].name}.h5").rename(kept / f"{draws[1].name}.h5")  # scene 1's name, scene 0's capture
     (tmp_path / "third" / "scenes").mkdir(parents=True)
     (tmp_path / "third" / "captures").mkdir()
@@ -317,6 +319,18 @@ def test_kept_captures_are_processed_again_instead_of_simulated(tmp_path, monkey
     (kept / "garbage.h5").write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(100))  # an HDF5 signature, nothing after it
     assert captures.kept_truth(kept / "garbage.h5", "") is None
     assert captures.kept_truth(kept / "absent.h5", "") is None
+    assert not captures.mark_simulator(tmp_path / "third" / "captures", "0" * 64)  # code changed during the run
+    assert not (tmp_path / "third" / "captures" / captures.SIMULATOR_FILE).exists()
+    sources = {path.relative_to(ROOT).as_posix() for path in captures.simulator_sources()}
+    assert {"mdpipe/params.py", "mdpipe/io/radarlog.py", "mdpipe/__init__.py", "mdpipe/simulate/run.py"} <= sources
+    assert not any(name.startswith("mdpipe/process/") for name in sources)  # what reuse leaves free to change
+
+    def unscorable(*_args, **_kwargs):
+        raise KeyError("duration_s")
+
+    monkeypatch.setattr(run, "score_scene", unscorable)  # a kept /Truth whose inner keys are missing
+    with pytest.raises(MdpipeError, match=rf"{draws[2].name}.h5: its /Truth cannot be scored .*delete the file"):
+        run.run_scene(draws[2], tmp_path / "third", reuse_dir=kept)
 
     (kept / captures.SIMULATOR_FILE).write_text("0" * 64 + "\n")
     result = CliRunner().invoke(main, [*args, "--out", str(second), "--reuse-captures", str(kept)])

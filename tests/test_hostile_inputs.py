@@ -256,7 +256,8 @@ def test_evaluate_keeps_this_runs_captures_only(tmp_path):
     for limit in ("2", "1"):
         assert CliRunner().invoke(main, ["evaluate", str(sweep), "--out", str(tmp_path), "--limit", limit,
                                          "--keep-captures"]).exit_code == 0
-    assert [p.name[:5] for p in (tmp_path / "captures").iterdir()] == ["0000_"]
+    assert [p.name[:5] for p in (tmp_path / "captures").glob("*.h5")] == ["0000_"]
+    assert (tmp_path / "captures" / "simulator.sha256").exists()  # the simulator's digest, for --reuse-captures
 
 
 def test_scene_bounds_on_rotor_and_leaf_counts():

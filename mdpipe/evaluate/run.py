@@ -9,6 +9,7 @@ from pathlib import Path
 import yaml
 from threadpoolctl import threadpool_limits
 
+from mdpipe.errors import MdpipeError
 from mdpipe.evaluate import captures, scoring
 from mdpipe.params import ProcessParams
 
@@ -77,7 +78,8 @@ def run_scene(draw, out_dir, keep_captures=False, reuse_dir=None):
 
     With ``reuse_dir`` (a folder :func:`mdpipe.evaluate.captures.check_reusable` accepted) the scene's capture kept
     there is processed instead, where it was simulated from this very scene (:func:`captures.kept_truth`); its
-    ``simulate_s`` is 0.
+    ``simulate_s`` is 0 and ``reused`` True; a kept ``/Truth`` that cannot be scored raises :class:`MdpipeError`
+    naming the file.
 
     A capture the processing fails on (any exception: the benchmark measures the processing, it does
     not stop at its first failure) is recorded with the error and counts as a wrong class.
@@ -113,8 +115,16 @@ def run_scene(draw, out_dir, keep_captures=False, reuse_dir=None):
         shutil.copyfile(capture, out_dir / CAPTURES_DIR / capture.name)
     elif not kept and not keep_captures:
         os.remove(capture)
-    timing = {"simulate_s": simulated - start, "process_s": processed - simulated, "error": error}
-    records = [{**common, **record, **timing} for record in score_scene(draw, scene, truth, rows, process=draw.process)]
+    timing = {"simulate_s": simulated - start, "process_s": processed - simulated, "reused": bool(kept),
+              "error": error}
+    try:
+        scored = score_scene(draw, scene, truth, rows, process=draw.process)
+    except (KeyError, TypeError, ValueError, IndexError) as exc:
+        if not kept:
+            raise
+        raise MdpipeError(f"{capture}: its /Truth cannot be scored ({type(exc).__name__}: {exc}); delete the file to "
+                          "have its scene simulated anew") from None
+    records = [{**common, **record, **timing} for record in scored]
     if error:  # a capture that could not be processed counts as a wrong class
         records[0].update(measured_class="error", class_ok=False)
     return records
@@ -124,13 +134,15 @@ def run_all(draws, out_dir, *, jobs=1, keep_captures=False, reuse_dir=None):
     """Records of every drawn scene, in scene order; ``jobs`` worker processes.
 
     ``out_dir/scenes/`` and ``out_dir/captures/`` are emptied of scene and capture files first, so that they hold
-    exactly this run's; kept captures are marked with the simulator's digest (:mod:`mdpipe.evaluate.captures`).
+    exactly this run's; kept captures are marked with the digest of the simulator's code taken as the run starts,
+    where the code still has it as the run ends (:func:`captures.mark_simulator`).
     ``reuse_dir``: another run's kept captures, processed again where they are this sweep's scenes (checked first:
     :func:`captures.check_reusable`).
     """
     out_dir = Path(out_dir)
     if reuse_dir is not None:
         captures.check_reusable(reuse_dir, out_dir / CAPTURES_DIR)
+    digest = captures.simulator_digest() if keep_captures else None  # the code that simulates this run
     for sub in (SCENES_DIR, CAPTURES_DIR):
         (out_dir / sub).mkdir(parents=True, exist_ok=True)
     stale = list((out_dir / SCENES_DIR).glob("*.yaml")) + list((out_dir / CAPTURES_DIR).glob("*.h5"))
@@ -144,7 +156,7 @@ def run_all(draws, out_dir, *, jobs=1, keep_captures=False, reuse_dir=None):
         with ProcessPoolExecutor(max_workers=jobs) as pool:
             results = list(pool.map(run_scene, *zip(*args)))
     if keep_captures:
-        captures.mark_simulator(out_dir / CAPTURES_DIR)
+        captures.mark_simulator(out_dir / CAPTURES_DIR, digest)
     else:
         try:
             (out_dir / CAPTURES_DIR).rmdir()

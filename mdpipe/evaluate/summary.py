@@ -179,6 +179,8 @@ def report(frame, *, title, wall_s, jobs):
     lines += ["## Timings", "",
               f"wall {wall_s:.1f} s with -j {jobs}; per scene simulate median {subjects['simulate_s'].median():.2f} s "
               f"(total {subjects['simulate_s'].sum():.1f} s), process median {subjects['process_s'].median():.2f} s "
-              f"(total {subjects['process_s'].sum():.1f} s); largest capture {int(subjects['n_chirps'].max())} chirps.",
+              f"(total {subjects['process_s'].sum():.1f} s); largest capture {int(subjects['n_chirps'].max())} chirps"
+              + (f"; {int(subjects['reused'].sum())} of {len(subjects)} captures reused (--reuse-captures)."
+                 if "reused" in subjects and subjects["reused"].any() else "."),
               ""]
     return "\n".join(lines)
