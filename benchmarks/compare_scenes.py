@@ -3,7 +3,7 @@
     python benchmarks/compare_scenes.py out/evaluate_kept/scenes.csv out/evaluate_reused/scenes.csv
 
 Prints each row (scene, target) that differs with the columns that moved, old -> new, and a count; exits 1 where any
-row differs or the two runs hold other scenes. Used by `make evaluate-reuse` (a capture processed again must score
+row differs or the two runs hold other scenes, 2 where a file cannot be read. Used by `make evaluate-reuse` (a capture processed again must score
 as it did) and to see what a processing change moved.
 """
 
@@ -16,12 +16,21 @@ import pandas as pd
 IGNORED = ("simulate_s", "process_s", "reused")  # how long, and whether simulated: not what was read
 
 
+def _number(value):
+    """``value`` as a float where it reads as one (a column read as text in one file only), else None."""
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return None
+
+
 def _same(a, b):
-    """Whether two cells hold the same value (NaN equal to NaN; floats equal within 1e-12 relative)."""
+    """Whether two cells hold the same value (NaN equal to NaN; numbers equal within 1e-12 relative)."""
     if pd.isna(a) and pd.isna(b):
         return True
-    if isinstance(a, (float, np.floating)) and isinstance(b, (float, np.floating)):
-        return bool(np.isclose(a, b, rtol=1e-12, atol=0.0))
+    x, y = _number(a), _number(b)
+    if x is not None and y is not None:
+        return bool(np.isclose(x, y, rtol=1e-12, atol=0.0))
     return a == b
 
 
@@ -41,7 +50,11 @@ def main():
     parser.add_argument("before")
     parser.add_argument("after")
     args = parser.parse_args()
-    before, after = pd.read_csv(args.before), pd.read_csv(args.after)
+    try:
+        before, after = pd.read_csv(args.before), pd.read_csv(args.after)
+    except (OSError, ValueError) as exc:
+        print(f"cannot read the two scenes.csv ({exc}); give two `mdpipe evaluate` runs' scenes.csv")
+        return 2
     keys = ["scene", "target"]
     if not before[keys].equals(after[keys]) or (set(before.columns) ^ set(after.columns)) - set(IGNORED):
         print(f"{args.before} and {args.after} hold other scenes, targets or columns: not one sweep's runs")

@@ -48,6 +48,7 @@ RADAR_LIMITS = {
 }
 
 
+GIB = 2**30  # bytes in a GiB, for the memory and disk budgets of processing and simulation
 MAX_TRANSMITTERS = 16  # transmitters a radar's chirps may cycle through
 MAX_TX_SEQUENCE = 64   # chirps of one transmit cycle (TxSeq)
 MAX_BLADES = 12        # blades per rotor (a ducted fan's at most)

@@ -1,7 +1,9 @@
 """mdpipe evaluate: scoring rules on hand-built rows, estimability, sweep drawing, the command."""
 
+import json
 from pathlib import Path
 
+import h5py
 import numpy as np
 import pandas as pd
 import pytest
@@ -11,7 +13,7 @@ from conftest import XBAND, scene_mapping, simulate, slow_time
 from mdpipe.cli import main
 from mdpipe.errors import MdpipeError, ParameterError
 from mdpipe.evaluate import run, scoring, summary, sweep
-from mdpipe.simulate.scene import scene_from_mapping
+from mdpipe.simulate.scene import scene_from_mapping, scene_to_yaml
 
 ROOT = Path(__file__).resolve().parents[1]
 SWEEPS = ROOT / "configs" / "sweeps"
@@ -305,6 +307,11 @@ def test_kept_captures_are_processed_again_instead_of_simulated(tmp_path, monkey
     pd.testing.assert_frame_equal(before.drop(columns=timing), after.drop(columns=timing))
     assert (after["simulate_s"] == 0).all() and after["reused"].all() and not before["reused"].any()
     assert not (second / "captures").exists() and "3 of 3 captures reused" in result.output
+    both = tmp_path / "both"  # reused and kept again: the same files, marked reusable in turn
+    result = CliRunner().invoke(main, [*args, "--out", str(both), "--reuse-captures", str(kept), "--keep-captures"])
+    assert result.exit_code == 0 and "3 of 3 captures reused" in result.output
+    assert all((both / "captures" / p.name).read_bytes() == p.read_bytes() for p in kept.glob("*.h5"))
+    assert (both / "captures" / captures.SIMULATOR_FILE).read_text() == (kept / captures.SIMULATOR_FILE).read_text()
 
     draws = sweep.draw_scenes(sweep.load_sweep(SWEEPS / "smoke.yaml"), limit=3)
     (kept / f"{draws[0].name}.h5").rename(kept / f"{draws[1].name}.h5")  # scene 1's name, scene 0's capture
@@ -319,18 +326,24 @@ def test_kept_captures_are_processed_again_instead_of_simulated(tmp_path, monkey
     (kept / "garbage.h5").write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(100))  # an HDF5 signature, nothing after it
     assert captures.kept_truth(kept / "garbage.h5", "") is None
     assert captures.kept_truth(kept / "absent.h5", "") is None
+    scene_yaml = scene_to_yaml(draws[2].scene)
+    assert captures.kept_truth(kept / f"{draws[2].name}.h5", scene_yaml) is not None
+    with h5py.File(kept / f"{draws[2].name}.h5", "r+") as h5:  # a truth without what scoring reads
+        expected = json.loads(h5["Truth"].attrs["expected_json"])
+        h5["Truth"].attrs["expected_json"] = json.dumps({k: v for k, v in expected.items() if k != "simulation"})
+    assert captures.kept_truth(kept / f"{draws[2].name}.h5", scene_yaml) is None
     assert not captures.mark_simulator(tmp_path / "third" / "captures", "0" * 64)  # code changed during the run
     assert not (tmp_path / "third" / "captures" / captures.SIMULATOR_FILE).exists()
     sources = {path.relative_to(ROOT).as_posix() for path in captures.simulator_sources()}
     assert {"mdpipe/params.py", "mdpipe/io/radarlog.py", "mdpipe/__init__.py", "mdpipe/simulate/run.py"} <= sources
-    assert not any(name.startswith("mdpipe/process/") for name in sources)  # what reuse leaves free to change
+    assert not any(name.startswith("mdpipe/process/") for name in sources)  # the simulator imports no processing
 
     def unscorable(*_args, **_kwargs):
         raise KeyError("duration_s")
 
     monkeypatch.setattr(run, "score_scene", unscorable)  # a kept /Truth whose inner keys are missing
-    with pytest.raises(MdpipeError, match=rf"{draws[2].name}.h5: its /Truth cannot be scored .*delete the file"):
-        run.run_scene(draws[2], tmp_path / "third", reuse_dir=kept)
+    with pytest.raises(MdpipeError, match=rf"{draws[0].name}.h5: its /Truth cannot be scored .*delete the file"):
+        run.run_scene(draws[0], tmp_path / "third", reuse_dir=both / "captures")
 
     (kept / captures.SIMULATOR_FILE).write_text("0" * 64 + "\n")
     result = CliRunner().invoke(main, [*args, "--out", str(second), "--reuse-captures", str(kept)])

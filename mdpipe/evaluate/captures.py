@@ -11,6 +11,7 @@ other code is refused, so a kept capture is never scored stale.
 import ast
 import hashlib
 import os
+import sys
 from pathlib import Path
 
 import h5py
@@ -21,20 +22,22 @@ from mdpipe.errors import MdpipeError
 
 SIMULATOR_FILE = "simulator.sha256"
 SIMULATOR_ROOTS = ("simulate", "physics")  # the simulator's packages; what they import from mdpipe counts too
-PROCESSING = "process"  # what reuse leaves free to change: the simulator takes one constant from it (GIB)
 TRUTH_KEYS = ("radar", "targets", "simulation")  # what scoring reads from a capture's /Truth
 
 
-def _imported_modules(path):
-    """The ``mdpipe`` modules the Python file at ``path`` imports (dotted names; a name imported from a package may
-    be a module of it)."""
+def _imported_modules(path, package):
+    """The ``mdpipe`` modules the Python file at ``path``, of the dotted ``package``, imports (dotted names; a name
+    imported from a package may be a module of it; relative imports resolved against ``package``)."""
     names = set()
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
         if isinstance(node, ast.Import):
             names.update(alias.name for alias in node.names if alias.name.split(".")[0] == "mdpipe")
-        elif isinstance(node, ast.ImportFrom) and node.level == 0 and (node.module or "").split(".")[0] == "mdpipe":
-            names.add(node.module)
-            names.update(f"{node.module}.{alias.name}" for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = package.split(".")[:len(package.split(".")) - node.level + 1] if node.level else []
+            module = ".".join(base + ([node.module] if node.module else []))
+            if module.split(".")[0] == "mdpipe":
+                names.add(module)
+                names.update(f"{module}.{alias.name}" for alias in node.names)
     return names
 
 
@@ -49,26 +52,29 @@ def _module_file(root, name):
 
 def simulator_sources():
     """The source files a capture's samples and ``/Truth`` come from: every file of ``SIMULATOR_ROOTS`` and, in turn,
-    every ``mdpipe`` module they import (the parameters, the capture writer, the version) but the processing's
-    (``PROCESSING``), in path order."""
+    every ``mdpipe`` module they import (the parameters, the capture writer, the version) with the ``__init__.py`` of
+    each package above it, in path order. The processing is none of them: the simulator imports nothing from it."""
     root = Path(mdpipe.__file__).parent
-    processing = root / PROCESSING
     pending = [path for package in SIMULATOR_ROOTS for path in (root / package).rglob("*.py")]
-    pending.append(root / "__init__.py")
     seen = set()
     while pending:
         path = pending.pop()
-        if path in seen or path.is_relative_to(processing):
+        if path in seen:
             continue
         seen.add(path)
-        pending.extend(found for name in _imported_modules(path) if (found := _module_file(root, name)))
+        parts = path.relative_to(root).with_suffix("").parts
+        package = ".".join(("mdpipe",) + parts[:-1])  # the package the file is of (or is: an __init__.py)
+        pending.extend(parent / "__init__.py" for parent in path.parents if parent.is_relative_to(root))
+        pending.extend(found for name in _imported_modules(path, package) if (found := _module_file(root, name)))
     return sorted(seen)
 
 
 def simulator_digest():
-    """SHA-256 (hex) of :func:`simulator_sources` (the path and content of each) and the numpy and h5py versions."""
+    """SHA-256 (hex) of :func:`simulator_sources` (the path and content of each) and the Python, numpy and h5py
+    versions."""
     root = Path(mdpipe.__file__).parent
-    digest = hashlib.sha256(f"numpy {np.__version__}, h5py {h5py.__version__}\0".encode())
+    versions = f"python {sys.version}, numpy {np.__version__}, h5py {h5py.__version__}\0"
+    digest = hashlib.sha256(versions.encode())
     for path in simulator_sources():
         digest.update(path.relative_to(root).as_posix().encode() + b"\0" + path.read_bytes() + b"\0")
     return digest.hexdigest()

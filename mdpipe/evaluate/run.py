@@ -119,7 +119,7 @@ def run_scene(draw, out_dir, keep_captures=False, reuse_dir=None):
               "error": error}
     try:
         scored = score_scene(draw, scene, truth, rows, process=draw.process)
-    except (KeyError, TypeError, ValueError, IndexError) as exc:
+    except Exception as exc:  # noqa: BLE001 - a kept file's truth, whatever fails in it, is named
         if not kept:
             raise
         raise MdpipeError(f"{capture}: its /Truth cannot be scored ({type(exc).__name__}: {exc}); delete the file to "

@@ -10,9 +10,9 @@ from dataclasses import replace
 import numpy as np
 
 from mdpipe.errors import ParameterError
+from mdpipe.params import GIB
 from mdpipe.process import filters, flashes, interference, ranging
 
-GIB = 2**30
 PASS2_BINS_PER_TARGET = 64  # bins a target's path may cross (a bird at 15 m/s over 1 s at 0.23 m bins)
 ANALYSIS_BYTES_PER_CHIRP = 1536  # per target: complex128 copies and spectrograms of the slow-time signal (the flash
                                  # edges' 8x zero-padded at a hop of 1/8 frame: 512 B a chirp, and 8 MB of transforms)

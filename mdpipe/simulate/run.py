@@ -11,10 +11,9 @@ from threadpoolctl import threadpool_limits
 
 from mdpipe import __version__
 from mdpipe.errors import ParameterError
-from mdpipe.params import RADAR_LIMITS
+from mdpipe.params import GIB, RADAR_LIMITS
 from mdpipe.io import INT16_FULL_SCALE, CaptureWriter
 from mdpipe.io.files import file_kind
-from mdpipe.process.memory import GIB
 from mdpipe.simulate.targets import module_of, target_echo
 from mdpipe.simulate.noise import noise_streams, standard_normal_f32
 from mdpipe.simulate.synth import CHUNK_CHIRPS, if_factors, plan_targets
