@@ -64,7 +64,8 @@ def simulator_sources():
         seen.add(path)
         parts = path.relative_to(root).with_suffix("").parts
         package = ".".join(("mdpipe",) + parts[:-1])  # the package the file is of (or is: an __init__.py)
-        pending.extend(parent / "__init__.py" for parent in path.parents if parent.is_relative_to(root))
+        pending.extend(init for parent in path.parents
+                       if parent.is_relative_to(root) and (init := parent / "__init__.py").is_file())
         pending.extend(found for name in _imported_modules(path, package) if (found := _module_file(root, name)))
     return sorted(seen)
 
