@@ -1,6 +1,6 @@
 """Two `mdpipe evaluate` runs of one sweep compared row by row: every column of their scenes.csv but the timings.
 
-    python benchmarks/compare_scenes.py out/evaluate_kept/scenes.csv out/evaluate_reused/scenes.csv
+    python benchmarks/compare_scenes.py BEFORE/scenes.csv AFTER/scenes.csv
 
 Prints each row (scene, target) that differs with the columns that moved, old -> new, and a count; exits 1 where any
 row differs or the two runs hold other scenes, 2 where a file cannot be read. Used by `make evaluate-reuse` (a capture processed again must score
