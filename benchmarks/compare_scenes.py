@@ -3,8 +3,8 @@
     python benchmarks/compare_scenes.py BEFORE/scenes.csv AFTER/scenes.csv
 
 Prints each row (scene, target) that differs with the columns that moved, old -> new, and a count; exits 1 where any
-row differs or the two runs hold other scenes, 2 where a file cannot be read. Used by `make evaluate-reuse` (a capture processed again must score
-as it did) and to see what a processing change moved.
+row differs or the two runs hold other scenes, 2 where a file cannot be read. Used by `make evaluate-reuse` (a capture
+processed again must score as it did) and to see what a processing change moved.
 """
 
 import argparse
