@@ -97,9 +97,10 @@ def _same_folder(a, b):
         return False
 
 
-def check_reusable(captures_dir, out_captures_dir):
+def check_reusable(captures_dir, out_captures_dir, digest):
     """``captures_dir`` as a folder of captures to reuse: raises :class:`MdpipeError` naming the fix when it is not a
-    folder, is the run's own captures folder (emptied as the run starts), or was kept by other simulator code."""
+    folder, is the run's own captures folder (emptied as the run starts), or was kept by simulator code other than
+    the current code's (``digest``, its :func:`simulator_digest`)."""
     captures_dir = Path(captures_dir)
     if not captures_dir.is_dir():
         raise MdpipeError(f"--reuse-captures {captures_dir}: no such folder; give the captures/ folder of a run made "
@@ -115,7 +116,7 @@ def check_reusable(captures_dir, out_captures_dir):
         kept, why = None, f"has a digest file that cannot be read ({exc.__class__.__name__})"
     else:
         why = "was simulated by other simulator code"
-    if kept != simulator_digest():
+    if kept != digest:
         raise MdpipeError(f"--reuse-captures {captures_dir}: the folder {why} ({SIMULATOR_FILE}); run without it "
                           "(with --keep-captures) to simulate the sweep anew")
 

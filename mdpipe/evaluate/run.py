@@ -140,9 +140,10 @@ def run_all(draws, out_dir, *, jobs=1, keep_captures=False, reuse_dir=None):
     :func:`captures.check_reusable`).
     """
     out_dir = Path(out_dir)
+    # the code that simulates this run, and must have simulated the captures it reuses
+    digest = captures.simulator_digest() if keep_captures or reuse_dir is not None else None
     if reuse_dir is not None:
-        captures.check_reusable(reuse_dir, out_dir / CAPTURES_DIR)
-    digest = captures.simulator_digest() if keep_captures else None  # the code that simulates this run
+        captures.check_reusable(reuse_dir, out_dir / CAPTURES_DIR, digest)
     for sub in (SCENES_DIR, CAPTURES_DIR):
         (out_dir / sub).mkdir(parents=True, exist_ok=True)
     stale = list((out_dir / SCENES_DIR).glob("*.yaml")) + list((out_dir / CAPTURES_DIR).glob("*.h5"))
