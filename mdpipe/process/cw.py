@@ -28,6 +28,7 @@ import numpy as np
 
 from mdpipe.errors import ParameterError
 from mdpipe.io.iq import read_iq
+from mdpipe.params import GIB
 from mdpipe.process import impulses, mains, memory, selection
 from mdpipe.process.cfar import gamma_isf
 from mdpipe.process.classify import classify
@@ -253,7 +254,7 @@ def process_recording(path, process, *, overrides=None, allow_external=False):
     recording = read_iq(path, overrides=overrides, allow_external=allow_external,
                         check=lambda n, params, stored: memory.check_iq_memory(path, n, params, process,
                                                                                stored_bytes_per_sample=stored),
-                        max_file_bytes=int(process.max_memory_gb * memory.GIB / 4))
+                        max_file_bytes=int(process.max_memory_gb * GIB / 4))
     params = recording.params
     if recording.n_samples < min_samples(params.sample_rate_hz):
         raise ParameterError(f"{path}: {recording.n_samples} I/Q sample(s); the analysis needs at least "
